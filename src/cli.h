@@ -1,0 +1,45 @@
+/* Command-line plumbing shared by the subcommands: each command declares its
+ * options once, as data, and help text and parsing are driven from that. */
+#ifndef MIMAS_CLI_H
+#define MIMAS_CLI_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+typedef struct cli_option {
+    const char *name;    /* long name without "--" */
+    char short_name;     /* 0 if none */
+    const char *arg;     /* argument placeholder, NULL for a flag */
+    const char *help;
+} cli_option;
+
+typedef struct cli_command {
+    const char *name;
+    const char *summary;      /* one line */
+    const char *usage;        /* arguments after "mimas NAME" */
+    const char *description;  /* paragraph(s) for --help and the man page */
+    const cli_option *options;
+    size_t noptions;
+    int (*run)(const struct cli_command *cmd, int argc, char **argv);
+} cli_command;
+
+/* Called for every option found: opt is an index into cmd->options, arg its
+ * argument or NULL.  Returns 0, or an exit status after printing a message. */
+typedef int (*cli_handler)(void *ctx, size_t opt, const char *arg);
+
+/* Parses argv (argv[0] is the command name).  Handles --help itself (prints
+ * help, returns -1 meaning "done, exit 0").  On a usage error prints
+ * "mimas NAME: ..." and returns 1.  On success returns 0 and sets *first to
+ * the index of the first positional argument. */
+int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler, void *ctx,
+              int *first);
+
+void cli_print_help(const cli_command *cmd, FILE *out);
+/* "mimas NAME: message" on stderr; returns status. */
+int cli_fail(const cli_command *cmd, int status, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+/* Parses a number; returns 0 on success. */
+int cli_parse_double(const char *s, double *v);
+int cli_parse_long(const char *s, long *v);
+
+#endif

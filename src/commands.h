@@ -1,0 +1,9 @@
+/* The subcommands of the mimas program, one cmd_*.c file each. */
+#ifndef MIMAS_COMMANDS_H
+#define MIMAS_COMMANDS_H
+
+#include "cli.h"
+
+extern const cli_command cmd_info;
+
+#endif

@@ -1,0 +1,235 @@
+#include <config.h>
+
+#include "h5util.h"
+
+#include <stdio.h>
+#include <string.h>
+
+void h5_quiet_begin(h5_quiet *q)
+{
+    H5Eget_auto2(H5E_DEFAULT, &q->func, &q->data);
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+}
+
+void h5_quiet_end(const h5_quiet *q)
+{
+    H5Eset_auto2(H5E_DEFAULT, q->func, q->data);
+}
+
+typedef struct {
+    char *buf;
+    size_t len;
+} err_sink;
+
+static herr_t take_desc(unsigned n, const H5E_error2_t *e, void *data)
+{
+    (void)n;
+    err_sink *s = data;
+    /* walking upward: the first entry is the innermost (most specific) one */
+    if (s->buf[0] == '\0' && e->desc && e->desc[0])
+        snprintf(s->buf, s->len, "%s", e->desc);
+    return 0;
+}
+
+void h5_error_text(char *buf, size_t len)
+{
+    if (!len)
+        return;
+    buf[0] = '\0';
+    err_sink s = {buf, len};
+    H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, take_desc, &s);
+}
+
+static int write_attr(hid_t obj, const char *name, hid_t type, hid_t space, const void *buf)
+{
+    if (H5Aexists(obj, name) > 0)
+        H5Adelete(obj, name);
+    hid_t a = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+    if (a < 0)
+        return -1;
+    herr_t rc = H5Awrite(a, type, buf);
+    H5Aclose(a);
+    return rc < 0 ? -1 : 0;
+}
+
+int h5_attr_write_str(hid_t obj, const char *name, const char *value)
+{
+    hid_t t = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t, strlen(value) + 1);
+    H5Tset_strpad(t, H5T_STR_NULLTERM);
+    hid_t s = H5Screate(H5S_SCALAR);
+    int rc = write_attr(obj, name, t, s, value);
+    H5Sclose(s);
+    H5Tclose(t);
+    return rc;
+}
+
+int h5_attr_write_strs(hid_t obj, const char *name, const char *const *values, size_t n)
+{
+    size_t w = 1;
+    for (size_t k = 0; k < n; k++)
+        if (strlen(values[k]) + 1 > w)
+            w = strlen(values[k]) + 1;
+    char buf[16 * 64];
+    if (n * w > sizeof buf)
+        return -1;
+    memset(buf, 0, sizeof buf);
+    for (size_t k = 0; k < n; k++)
+        memcpy(buf + k * w, values[k], strlen(values[k]));
+    hid_t t = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t, w);
+    H5Tset_strpad(t, H5T_STR_NULLTERM);
+    hsize_t dim = n;
+    hid_t s = H5Screate_simple(1, &dim, NULL);
+    int rc = write_attr(obj, name, t, s, buf);
+    H5Sclose(s);
+    H5Tclose(t);
+    return rc;
+}
+
+int h5_attr_write_ints(hid_t obj, const char *name, const int *values, size_t n)
+{
+    hsize_t dim = n;
+    hid_t s = n == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &dim, NULL);
+    int rc = write_attr(obj, name, H5T_NATIVE_INT, s, values);
+    H5Sclose(s);
+    return rc;
+}
+
+int h5_attr_write_double(hid_t obj, const char *name, double value)
+{
+    hid_t s = H5Screate(H5S_SCALAR);
+    int rc = write_attr(obj, name, H5T_NATIVE_DOUBLE, s, &value);
+    H5Sclose(s);
+    return rc;
+}
+
+int h5_attr_read_ints(hid_t obj, const char *name, int *values, size_t n)
+{
+    if (H5Aexists(obj, name) <= 0)
+        return -1;
+    hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+    if (a < 0)
+        return -1;
+    hid_t s = H5Aget_space(a);
+    hssize_t count = H5Sget_simple_extent_npoints(s);
+    H5Sclose(s);
+    int rc = -1;
+    if (count >= 1 && (size_t)count <= n && H5Aread(a, H5T_NATIVE_INT, values) >= 0)
+        rc = (int)count;
+    H5Aclose(a);
+    return rc;
+}
+
+int h5_attr_read_str(hid_t obj, const char *name, char *buf, size_t len)
+{
+    if (H5Aexists(obj, name) <= 0)
+        return -1;
+    hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+    if (a < 0)
+        return -1;
+    hid_t ft = H5Aget_type(a);
+    int rc = -1;
+    if (H5Tget_class(ft) == H5T_STRING) {
+        if (H5Tis_variable_str(ft) > 0) {
+            char *v = NULL;
+            hid_t mt = H5Tcopy(H5T_C_S1);
+            H5Tset_size(mt, H5T_VARIABLE);
+            if (H5Aread(a, mt, &v) >= 0 && v) {
+                snprintf(buf, len, "%s", v);
+                H5free_memory(v);
+                rc = 0;
+            }
+            H5Tclose(mt);
+        } else {
+            size_t sz = H5Tget_size(ft);
+            char tmp[1024];
+            if (sz < sizeof tmp) {
+                hid_t mt = H5Tcopy(H5T_C_S1);
+                H5Tset_size(mt, sz + 1);
+                H5Tset_strpad(mt, H5T_STR_NULLTERM);
+                if (H5Aread(a, mt, tmp) >= 0) {
+                    tmp[sz] = '\0';
+                    snprintf(buf, len, "%s", tmp);
+                    rc = 0;
+                }
+                H5Tclose(mt);
+            }
+        }
+    }
+    H5Tclose(ft);
+    H5Aclose(a);
+    return rc;
+}
+
+int h5_attr_read_strs(hid_t obj, const char *name, char (*values)[16], size_t n)
+{
+    if (H5Aexists(obj, name) <= 0)
+        return -1;
+    hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+    if (a < 0)
+        return -1;
+    hid_t s = H5Aget_space(a);
+    hssize_t count = H5Sget_simple_extent_npoints(s);
+    H5Sclose(s);
+    int rc = -1;
+    if (count >= 1 && (size_t)count <= n) {
+        hid_t mt = H5Tcopy(H5T_C_S1);
+        H5Tset_size(mt, 16);
+        H5Tset_strpad(mt, H5T_STR_NULLTERM);
+        hid_t ft = H5Aget_type(a);
+        if (H5Tget_class(ft) == H5T_STRING && H5Tis_variable_str(ft) <= 0 &&
+            H5Aread(a, mt, values) >= 0) {
+            for (hssize_t k = 0; k < count; k++)
+                values[k][15] = '\0';
+            rc = (int)count;
+        }
+        H5Tclose(ft);
+        H5Tclose(mt);
+    }
+    H5Aclose(a);
+    return rc;
+}
+
+hid_t h5_create_growing(hid_t loc, const char *name, hid_t type, int rank, int n_unlimited,
+                        const hsize_t *dims, const hsize_t *chunk, const void *fill,
+                        int deflate)
+{
+    hsize_t cur[4], max[4];
+    for (int d = 0; d < rank; d++) {
+        cur[d] = d < n_unlimited ? 0 : dims[d];
+        max[d] = d < n_unlimited ? H5S_UNLIMITED : dims[d];
+    }
+    hid_t space = H5Screate_simple(rank, cur, max);
+    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, rank, chunk);
+    if (fill)
+        H5Pset_fill_value(dcpl, type, fill);
+    H5Pset_fill_time(dcpl, H5D_FILL_TIME_IFSET);
+    H5Pset_alloc_time(dcpl, H5D_ALLOC_TIME_INCR);
+    if (deflate > 0) {
+        H5Pset_shuffle(dcpl);
+        H5Pset_deflate(dcpl, (unsigned)deflate);
+    }
+    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+    H5Pset_create_intermediate_group(lcpl, 1);
+    hid_t ds = H5Dcreate2(loc, name, type, space, lcpl, dcpl, H5P_DEFAULT);
+    H5Pclose(lcpl);
+    H5Pclose(dcpl);
+    H5Sclose(space);
+    return ds;
+}
+
+hsize_t h5_extent0(hid_t dset)
+{
+    hsize_t dims[4] = {0};
+    hid_t s = H5Dget_space(dset);
+    if (s < 0)
+        return 0;
+    if (H5Sget_simple_extent_ndims(s) < 1 || H5Sget_simple_extent_ndims(s) > 4)
+        dims[0] = 0;
+    else
+        H5Sget_simple_extent_dims(s, dims, NULL);
+    H5Sclose(s);
+    return dims[0];
+}

@@ -1,0 +1,44 @@
+/* Small HDF5 helpers shared by the native writer and reader: silencing
+ * HDF5's own error printing, turning its error stack into one message, and
+ * attribute and extendible-dataset chores. */
+#ifndef MIMAS_H5UTIL_H
+#define MIMAS_H5UTIL_H
+
+#include <hdf5.h>
+#include <stddef.h>
+
+/* While "quiet", HDF5 prints nothing; mimas reports errors itself. */
+typedef struct h5_quiet {
+    H5E_auto2_t func;
+    void *data;
+} h5_quiet;
+void h5_quiet_begin(h5_quiet *q);
+void h5_quiet_end(const h5_quiet *q);
+
+/* The innermost HDF5 error description of the current error stack
+ * ("truncated file: eof = ...", "unable to open file"), or "" if none. */
+void h5_error_text(char *buf, size_t len);
+
+int h5_attr_write_str(hid_t obj, const char *name, const char *value);
+int h5_attr_write_strs(hid_t obj, const char *name, const char *const *values, size_t n);
+int h5_attr_write_ints(hid_t obj, const char *name, const int *values, size_t n);
+int h5_attr_write_double(hid_t obj, const char *name, double value);
+/* Reads up to n ints; returns the number stored in the attribute, or -1. */
+int h5_attr_read_ints(hid_t obj, const char *name, int *values, size_t n);
+/* Reads a scalar string attribute (fixed or variable length); -1 if absent. */
+int h5_attr_read_str(hid_t obj, const char *name, char *buf, size_t len);
+/* Reads a 1-d string-array attribute into fixed-size slots; returns count or -1. */
+int h5_attr_read_strs(hid_t obj, const char *name, char (*values)[16], size_t n);
+
+/* Creates a chunked dataset of rank `rank` whose leading dimensions marked
+ * unlimited start at 0.  dims gives the fixed trailing sizes (leading entries
+ * ignored); chunk the chunk shape; fill is the fill value or NULL; deflate the
+ * gzip level (0: none, with shuffle otherwise). */
+hid_t h5_create_growing(hid_t loc, const char *name, hid_t type, int rank, int n_unlimited,
+                        const hsize_t *dims, const hsize_t *chunk, const void *fill,
+                        int deflate);
+
+/* Current extent of dimension 0 (or 0 on error). */
+hsize_t h5_extent0(hid_t dset);
+
+#endif

@@ -1,0 +1,69 @@
+/* mimas: git-style front end.  One table maps subcommand names to their
+ * declarations (src/cmd_*.c); everything else lives in libmimas. */
+#include <config.h>
+
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+
+static const cli_command *const commands[] = {
+    &cmd_info,
+};
+#define NCOMMANDS (sizeof commands / sizeof commands[0])
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "Usage: mimas COMMAND [options] INPUT...\n"
+            "       mimas help [COMMAND] | mimas --version\n\n"
+            "mimas turns particle and contact data of granular (DEM) simulations into\n"
+            "continuum fields and the analyses built on them.\n\nCommands:\n");
+    for (size_t k = 0; k < NCOMMANDS; k++)
+        fprintf(out, "  %-12s %s\n", commands[k]->name, commands[k]->summary);
+    fprintf(out, "\n'mimas COMMAND --help' describes a command's options.\n");
+}
+
+static const cli_command *find(const char *name)
+{
+    for (size_t k = 0; k < NCOMMANDS; k++)
+        if (strcmp(commands[k]->name, name) == 0)
+            return commands[k];
+    return NULL;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 1;
+    }
+    const char *name = argv[1];
+    if (!strcmp(name, "--version") || !strcmp(name, "-V")) {
+        printf("mimas %s\n", PACKAGE_VERSION);
+        return 0;
+    }
+    if (!strcmp(name, "--help") || !strcmp(name, "-h")) {
+        usage(stdout);
+        return 0;
+    }
+    if (!strcmp(name, "help")) {
+        if (argc < 3) {
+            usage(stdout);
+            return 0;
+        }
+        const cli_command *c = find(argv[2]);
+        if (!c) {
+            fprintf(stderr, "mimas: unknown command '%s' (see mimas help)\n", argv[2]);
+            return 1;
+        }
+        cli_print_help(c, stdout);
+        return 0;
+    }
+    const cli_command *c = find(name);
+    if (!c) {
+        fprintf(stderr, "mimas: unknown command '%s' (see mimas help)\n", name);
+        return 1;
+    }
+    return c->run(c, argc - 1, argv + 1);
+}

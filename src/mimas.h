@@ -1,0 +1,22 @@
+/* libmimas public interface: include this one header.
+ * Link with `pkg-config --cflags --libs mimas`. */
+#ifndef MIMAS_H
+#define MIMAS_H
+
+#include "error.h"
+#include "frame.h"
+#include "id_index.h"
+#include "native.h"
+#include "voro_cells.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The library version, e.g. "0.1.0". */
+const char *mimas_version(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,69 @@
+/* The mimas native file format (docs/format.md): H5MD 1.1 particles plus the
+ * /contacts extension, one frame appended at a time. */
+#ifndef MIMAS_NATIVE_H
+#define MIMAS_NATIVE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "error.h"
+#include "frame.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define MIMAS_NATIVE_VERSION_MAJOR 1
+#define MIMAS_NATIVE_VERSION_MINOR 0
+
+/* ---- writer ---- */
+typedef struct mimas_writer mimas_writer;
+
+typedef struct mimas_writer_options {
+    int deflate;        /* gzip level 0..9 for per-particle and per-contact data (default 1) */
+    int atomic;         /* write under a temporary name, rename on close (default 0) */
+    int triclinic;      /* store edge vectors even if the first box is orthogonal */
+    const char *author; /* H5MD author name (default: $USER or "unknown") */
+    const char *provenance; /* free text, e.g. the command line (may be NULL) */
+} mimas_writer_options;
+
+void mimas_writer_options_default(mimas_writer_options *o);
+/* Creates (truncates) the file.  With atomic, nothing appears at path until close. */
+int mimas_writer_open(mimas_writer **w, const char *path, const mimas_writer_options *o,
+                      mimas_error *err);
+/* Appends one frame and flushes it: after this returns, a crash leaves a file
+ * that reads back every appended frame.  Every frame must carry the same set
+ * of quantities as the first. */
+int mimas_writer_append(mimas_writer *w, const mimas_frame *f, mimas_error *err);
+/* Number of frames appended so far. */
+size_t mimas_writer_frames(const mimas_writer *w);
+/* Closes the file (renaming it into place in atomic mode) and frees w. */
+int mimas_writer_close(mimas_writer *w, mimas_error *err);
+/* Closes and deletes the file being written (no partial output); frees w. */
+void mimas_writer_abort(mimas_writer *w);
+
+/* ---- reader (random access) ---- */
+typedef struct mimas_native mimas_native;
+
+int mimas_native_open(mimas_native **r, const char *path, mimas_error *err);
+size_t mimas_native_frames(const mimas_native *r);
+/* Reads frame k into f (reusing its memory); reads nothing of other frames. */
+int mimas_native_read(mimas_native *r, size_t k, mimas_frame *f, mimas_error *err);
+/* Step, time, box and row counts of frame k without reading its arrays. */
+typedef struct mimas_frame_meta {
+    int64_t step;
+    double time;
+    mimas_box box;
+    size_t n_particles, n_contacts, n_walls;
+} mimas_frame_meta;
+int mimas_native_frame_meta(mimas_native *r, size_t k, mimas_frame_meta *m, mimas_error *err);
+/* Which tables the file has. */
+int mimas_native_has_contacts(const mimas_native *r);
+int mimas_native_has_walls(const mimas_native *r);
+const char *mimas_native_creator(const mimas_native *r);
+void mimas_native_close(mimas_native *r);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

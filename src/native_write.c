@@ -1,0 +1,620 @@
+/* Native format writer (docs/format.md).  Frames are appended one at a time;
+ * each append ends with a flush, and file space is only ever taken from the
+ * end of the file, so what a flush committed is never overwritten later: a
+ * process killed in the middle of a frame leaves a file whose committed
+ * frames read back intact. */
+#include <config.h>
+
+#include "native.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "h5util.h"
+#include "native_layout.h"
+
+#define PARTICLE_CHUNK_MAX 32768   /* rows of a per-particle chunk */
+#define ROW_CHUNK 32768            /* rows of a per-contact chunk */
+#define FRAME_CHUNK 1024           /* rows of a per-frame chunk */
+
+/* A flat (CSR) table of contacts or wall contacts over all frames. */
+typedef struct flat_table {
+    const mimas_table_desc *desc;
+    const char *group;
+    hid_t step, time, offset;
+    hsize_t rows;          /* rows committed so far over all frames */
+    size_t ncols;
+    native_col *cols;
+} flat_table;
+
+struct mimas_writer {
+    char *path;            /* final name */
+    char *open_path;       /* name being written (temporary in atomic mode) */
+    mimas_writer_options opt;
+    hid_t file;
+    size_t frames;
+    /* frame layout, fixed by the first frame */
+    int started;
+    int triclinic;
+    int periodic[3];
+    unsigned p_present, c_present, w_present;
+    int has_contacts, has_walls;
+    /* particles */
+    hid_t clock_step, clock_time;   /* shared by every time-dependent element */
+    hid_t box_edges, box_lower, box_upper, count;
+    hsize_t nmax;                   /* width of the per-particle datasets */
+    size_t npcols;
+    native_col *pcols;
+    flat_table contacts, walls;
+    /* scratch for index -> id conversion */
+    int64_t *ids;
+    size_t ids_cap;
+};
+
+void mimas_writer_options_default(mimas_writer_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->deflate = 1;
+}
+
+static int h5fail(mimas_writer *w, mimas_error *err, const char *what)
+{
+    char text[256];
+    h5_error_text(text, sizeof text);
+    return mimas_error_set(err, MIMAS_EIO, "%s: cannot %s%s%s", w->path, what,
+                           text[0] ? ": " : "", text);
+}
+
+int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_options *o,
+                      mimas_error *err)
+{
+    *out = NULL;
+    mimas_writer *w = calloc(1, sizeof *w);
+    if (!w)
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    if (o)
+        w->opt = *o;
+    else
+        mimas_writer_options_default(&w->opt);
+    if (w->opt.deflate < 0 || w->opt.deflate > 9) {
+        int level = w->opt.deflate;
+        free(w);
+        return mimas_error_set(err, MIMAS_EUSAGE, "compression level %d is not in 0..9", level);
+    }
+    w->path = strdup(path);
+    size_t len = strlen(path) + 32;
+    w->open_path = malloc(len);
+    if (!w->path || !w->open_path) {
+        free(w->path);
+        free(w->open_path);
+        free(w);
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    }
+    if (w->opt.atomic)
+        snprintf(w->open_path, len, "%s.tmp%ld", path, (long)getpid());
+    else
+        snprintf(w->open_path, len, "%s", path);
+
+    h5_quiet q;
+    h5_quiet_begin(&q);
+    hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+    /* allocate only at the end of the file: never reuse space a committed
+     * frame may still point to (see the comment at the top) */
+    H5Pset_file_space_strategy(fcpl, H5F_FSPACE_STRATEGY_NONE, 0, (hsize_t)1);
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
+    w->file = H5Fcreate(w->open_path, H5F_ACC_TRUNC, fcpl, fapl);
+    H5Pclose(fapl);
+    H5Pclose(fcpl);
+    int rc = MIMAS_OK;
+    if (w->file < 0) {
+        rc = h5fail(w, err, "create the file");
+    } else {
+        /* H5MD metadata */
+        int version[2] = {1, 1};
+        int fmt[2] = {MIMAS_NATIVE_VERSION_MAJOR, MIMAS_NATIVE_VERSION_MINOR};
+        const char *author = w->opt.author ? w->opt.author : getenv("USER");
+        hid_t g = H5Gcreate2(w->file, "/h5md", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        hid_t ga = H5Gcreate2(g, "author", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        hid_t gc = H5Gcreate2(g, "creator", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        hid_t gm = H5Gcreate2(w->file, NATIVE_MIMAS, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        if (g < 0 || ga < 0 || gc < 0 || gm < 0 ||
+            h5_attr_write_ints(g, "version", version, 2) ||
+            h5_attr_write_str(ga, "name", author && author[0] ? author : "unknown") ||
+            h5_attr_write_str(gc, "name", PACKAGE_NAME) ||
+            h5_attr_write_str(gc, "version", PACKAGE_VERSION) ||
+            h5_attr_write_ints(gm, "format_version", fmt, 2) ||
+            (w->opt.provenance && h5_attr_write_str(gm, "provenance", w->opt.provenance)))
+            rc = h5fail(w, err, "write the file header");
+        H5Gclose(gm);
+        H5Gclose(gc);
+        H5Gclose(ga);
+        H5Gclose(g);
+        if (!rc && H5Fflush(w->file, H5F_SCOPE_LOCAL) < 0)
+            rc = h5fail(w, err, "flush");
+    }
+    h5_quiet_end(&q);
+    if (rc) {
+        mimas_writer_abort(w);
+        return rc;
+    }
+    *out = w;
+    return MIMAS_OK;
+}
+
+size_t mimas_writer_frames(const mimas_writer *w)
+{
+    return w->frames;
+}
+
+/* ---- layout creation (first frame) ---- */
+
+static hid_t make_group(hid_t file, const char *path)
+{
+    if (H5Lexists(file, path, H5P_DEFAULT) > 0)
+        return H5Gopen2(file, path, H5P_DEFAULT);
+    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+    H5Pset_create_intermediate_group(lcpl, 1);
+    hid_t g = H5Gcreate2(file, path, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+    H5Pclose(lcpl);
+    return g;
+}
+
+/* A time-dependent H5MD element {step, time, value}: value grows along its
+ * first n_unlimited dimensions; step and time are hard links to the shared
+ * clock datasets (H5MD allows sharing them between elements). */
+static hid_t make_element(mimas_writer *w, const char *path, hid_t type, int rank,
+                          int n_unlimited, const hsize_t *dims, const hsize_t *chunk,
+                          const void *fill, int deflate, const char *unit)
+{
+    hid_t g = make_group(w->file, path);
+    if (g < 0)
+        return H5I_INVALID_HID;
+    hid_t ds = h5_create_growing(g, "value", type, rank, n_unlimited, dims, chunk, fill,
+                                 deflate);
+    if (ds >= 0 && unit && strcmp(unit, "1") != 0)
+        h5_attr_write_str(ds, "unit", unit);
+    if (ds >= 0 && strcmp(path, NATIVE_CLOCK) != 0 &&
+        (H5Lcreate_hard(w->clock_step, ".", g, "step", H5P_DEFAULT, H5P_DEFAULT) < 0 ||
+         H5Lcreate_hard(w->clock_time, ".", g, "time", H5P_DEFAULT, H5P_DEFAULT) < 0)) {
+        H5Dclose(ds);
+        ds = H5I_INVALID_HID;
+    }
+    H5Gclose(g);
+    return ds;
+}
+
+static int create_particles(mimas_writer *w, const mimas_frame *f, mimas_error *err)
+{
+    const mimas_particles *p = &f->particles;
+    hsize_t one = FRAME_CHUNK;
+    hid_t g = make_group(w->file, NATIVE_CLOCK);
+    if (g < 0)
+        return h5fail(w, err, "create " NATIVE_CLOCK);
+    hsize_t d1 = 0;
+    w->clock_step = h5_create_growing(g, "step", H5T_STD_I64LE, 1, 1, &d1, &one, NULL, 0);
+    w->clock_time = h5_create_growing(g, "time", H5T_IEEE_F64LE, 1, 1, &d1, &one, NULL, 0);
+    H5Gclose(g);
+    if (w->clock_step < 0 || w->clock_time < 0)
+        return h5fail(w, err, "create the step and time datasets");
+    if (h5_attr_write_str(w->clock_time, "unit", "s"))
+        return h5fail(w, err, "write an attribute");
+
+    w->pcols = calloc(mimas_particles_desc.ncolumns + p->n_extra, sizeof *w->pcols);
+    if (!w->pcols)
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    w->npcols = native_cols_of(p, &mimas_particles_desc, w->pcols);
+    w->nmax = 0;
+    hsize_t cn = p->n < 256 ? 256 : (p->n > PARTICLE_CHUNK_MAX ? PARTICLE_CHUNK_MAX : p->n);
+    for (size_t c = 0; c < w->npcols; c++) {
+        native_col *nc = &w->pcols[c];
+        char path[256];
+        snprintf(path, sizeof path, NATIVE_PARTICLES "/%s", nc->name);
+        int rank = nc->ncomp == 1 ? 2 : 3;
+        hsize_t dims[3] = {0, 0, (hsize_t)nc->ncomp};
+        hsize_t chunk[3] = {1, cn, (hsize_t)nc->ncomp};
+        /* H5MD: absent particles carry the fill value; id -1 marks a free slot */
+        const int64_t fill_id = -1;
+        const int32_t fill_i32 = nc->desc_col >= 0 && !strcmp(nc->name, "species") ? -1 : 0;
+        const double fill_f = 0.0 / 0.0;
+        const void *fill = nc->type == MIMAS_T_F64   ? (const void *)&fill_f
+                           : nc->type == MIMAS_T_I64 ? (const void *)&fill_id
+                                                     : (const void *)&fill_i32;
+        const char *unit = nc->desc_col >= 0 ? mimas_particles_desc.columns[nc->desc_col].unit
+                                             : NULL;
+        /* two unlimited dimensions: frames and particle slots */
+        nc->ds = make_element(w, path, native_file_type(nc->type), rank, 2, dims, chunk, fill,
+                              w->opt.deflate, unit);
+        if (nc->ds < 0)
+            return h5fail(w, err, "create a particle dataset");
+    }
+
+    /* box: H5MD dimension and boundary attributes and time-dependent edges;
+     * the corners lo and hi as the mimas extension elements "lower" and
+     * "upper" (so that they read back bit-identical, which lo + edge is not) */
+    hid_t gb = make_group(w->file, NATIVE_BOX);
+    if (gb < 0)
+        return h5fail(w, err, "create the box group");
+    const char *bnd[3];
+    for (int d = 0; d < 3; d++)
+        bnd[d] = w->periodic[d] ? "periodic" : "none";
+    int three = 3;
+    int rc = h5_attr_write_ints(gb, "dimension", &three, 1) |
+             h5_attr_write_strs(gb, "boundary", bnd, 3);
+    H5Gclose(gb);
+    if (rc)
+        return h5fail(w, err, "write the box attributes");
+    hsize_t edims[3] = {0, 3, 3}, echunk[3] = {FRAME_CHUNK, 3, 3};
+    w->box_edges = make_element(w, NATIVE_BOX "/edges", H5T_IEEE_F64LE, w->triclinic ? 3 : 2,
+                                1, edims, echunk, NULL, 0, "m");
+    w->box_lower = make_element(w, NATIVE_BOX "/lower", H5T_IEEE_F64LE, 2, 1, edims, echunk,
+                                NULL, 0, "m");
+    w->box_upper = make_element(w, NATIVE_BOX "/upper", H5T_IEEE_F64LE, 2, 1, edims, echunk,
+                                NULL, 0, "m");
+    hsize_t cdims[1] = {0}, cchunk[1] = {FRAME_CHUNK};
+    w->count = make_element(w, NATIVE_COUNT, H5T_STD_I64LE, 1, 1, cdims, cchunk, NULL, 0, NULL);
+    if (w->box_edges < 0 || w->box_lower < 0 || w->box_upper < 0 || w->count < 0)
+        return h5fail(w, err, "create the box and count elements");
+    return MIMAS_OK;
+}
+
+static int create_flat(mimas_writer *w, flat_table *t, const void *tab, mimas_error *err)
+{
+    hid_t g = make_group(w->file, t->group);
+    if (g < 0)
+        return h5fail(w, err, "create a contact group");
+    hsize_t zero = 0, fchunk = FRAME_CHUNK;
+    t->step = h5_create_growing(g, "step", H5T_STD_I64LE, 1, 1, &zero, &fchunk, NULL, 0);
+    t->time = h5_create_growing(g, "time", H5T_IEEE_F64LE, 1, 1, &zero, &fchunk, NULL, 0);
+    t->offset = h5_create_growing(g, "offset", H5T_STD_I64LE, 1, 1, &zero, &fchunk, NULL, 0);
+    if (t->step < 0 || t->time < 0 || t->offset < 0) {
+        H5Gclose(g);
+        return h5fail(w, err, "create the contact index datasets");
+    }
+    /* offset[k] is the first row of frame k; offset has frames + 1 entries */
+    hsize_t one = 1, start = 0;
+    int64_t first = 0;
+    H5Dset_extent(t->offset, &one);
+    hid_t fs = H5Dget_space(t->offset);
+    hid_t ms = H5Screate_simple(1, &one, NULL);
+    H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, NULL, &one, NULL);
+    herr_t hr = H5Dwrite(t->offset, H5T_NATIVE_INT64, ms, fs, H5P_DEFAULT, &first);
+    H5Sclose(ms);
+    H5Sclose(fs);
+    h5_attr_write_str(t->time, "unit", "s");
+    if (hr < 0) {
+        H5Gclose(g);
+        return h5fail(w, err, "write the contact offsets");
+    }
+    size_t n_extra = *(const size_t *)((const char *)tab + t->desc->off_n_extra);
+    t->cols = calloc(t->desc->ncolumns + n_extra, sizeof *t->cols);
+    if (!t->cols) {
+        H5Gclose(g);
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    }
+    t->ncols = native_cols_of(tab, t->desc, t->cols);
+    for (size_t c = 0; c < t->ncols; c++) {
+        native_col *nc = &t->cols[c];
+        int rank = nc->ncomp == 1 ? 1 : 2;
+        hsize_t dims[2] = {0, (hsize_t)nc->ncomp}, chunk[2] = {ROW_CHUNK, (hsize_t)nc->ncomp};
+        nc->ds = h5_create_growing(g, nc->name, native_file_type(nc->type), rank, 1, dims,
+                                   chunk, NULL, w->opt.deflate);
+        if (nc->ds < 0) {
+            H5Gclose(g);
+            return h5fail(w, err, "create a contact dataset");
+        }
+        const char *unit = nc->desc_col >= 0 ? t->desc->columns[nc->desc_col].unit : NULL;
+        if (unit && strcmp(unit, "1") != 0)
+            h5_attr_write_str(nc->ds, "unit", unit);
+        if (nc->type == MIMAS_T_INDEX)
+            h5_attr_write_str(nc->ds, "meaning", "particle id (the id element of " NATIVE_PARTICLES ")");
+    }
+    H5Gclose(g);
+    return MIMAS_OK;
+}
+
+/* ---- consistency of later frames with the first ---- */
+
+static int extras_match(const void *tab, const mimas_table_desc *d, const native_col *cols,
+                        size_t ncols, const char *what, mimas_error *err)
+{
+    const size_t n_extra = *(const size_t *)((const char *)tab + d->off_n_extra);
+    const mimas_extra *extra = *(mimas_extra *const *)((const char *)tab + d->off_extra);
+    size_t expected = 0;
+    for (size_t c = 0; c < ncols; c++) {
+        if (cols[c].extra < 0)
+            continue;
+        expected++;
+        if ((size_t)cols[c].extra >= n_extra ||
+            strcmp(extra[cols[c].extra].name, cols[c].name) != 0 ||
+            extra[cols[c].extra].ncomp != cols[c].ncomp)
+            return mimas_error_set(err, MIMAS_EDATA,
+                                   "%s column '%s' of the first frame is missing", what,
+                                   cols[c].name);
+    }
+    if (expected != n_extra)
+        return mimas_error_set(err, MIMAS_EDATA, "%s have extra columns the first frame had not",
+                               what);
+    return MIMAS_OK;
+}
+
+static int check_same_layout(mimas_writer *w, const mimas_frame *f, mimas_error *err)
+{
+    int rc = MIMAS_OK;
+    if (mimas_table_present(&f->particles, &mimas_particles_desc) != w->p_present)
+        rc = mimas_error_set(err, MIMAS_EDATA,
+                             "particles carry other quantities than in the first frame");
+    else if (f->has_contacts != w->has_contacts || f->has_walls != w->has_walls)
+        rc = mimas_error_set(err, MIMAS_EDATA,
+                             "contact data present in some frames and absent in others");
+    else if (w->has_contacts &&
+             mimas_table_present(&f->contacts, &mimas_contacts_desc) != w->c_present)
+        rc = mimas_error_set(err, MIMAS_EDATA,
+                             "contacts carry other quantities than in the first frame");
+    else if (w->has_walls && mimas_table_present(&f->walls, &mimas_walls_desc) != w->w_present)
+        rc = mimas_error_set(err, MIMAS_EDATA,
+                             "wall contacts carry other quantities than in the first frame");
+    else if (!w->triclinic && mimas_box_is_triclinic(&f->box))
+        rc = mimas_error_set(err, MIMAS_EDATA,
+                             "the box becomes triclinic after an orthogonal first frame "
+                             "(write with the triclinic option)");
+    else if (memcmp(w->periodic, f->box.periodic, sizeof w->periodic) != 0)
+        rc = mimas_error_set(err, MIMAS_EDATA, "the periodic boundaries change between frames");
+    if (!rc)
+        rc = extras_match(&f->particles, &mimas_particles_desc, w->pcols, w->npcols,
+                          "particles", err);
+    if (!rc && w->has_contacts)
+        rc = extras_match(&f->contacts, &mimas_contacts_desc, w->contacts.cols,
+                          w->contacts.ncols, "contacts", err);
+    if (!rc && w->has_walls)
+        rc = extras_match(&f->walls, &mimas_walls_desc, w->walls.cols, w->walls.ncols,
+                          "wall contacts", err);
+    return rc;
+}
+
+static int start_layout(mimas_writer *w, const mimas_frame *f, mimas_error *err)
+{
+    w->triclinic = w->opt.triclinic || mimas_box_is_triclinic(&f->box);
+    memcpy(w->periodic, f->box.periodic, sizeof w->periodic);
+    w->p_present = mimas_table_present(&f->particles, &mimas_particles_desc);
+    w->has_contacts = f->has_contacts;
+    w->has_walls = f->has_walls;
+    w->c_present = mimas_table_present(&f->contacts, &mimas_contacts_desc);
+    w->w_present = mimas_table_present(&f->walls, &mimas_walls_desc);
+    w->contacts.desc = &mimas_contacts_desc;
+    w->contacts.group = NATIVE_CONTACTS;
+    w->walls.desc = &mimas_walls_desc;
+    w->walls.group = NATIVE_WALLS;
+    int rc = create_particles(w, f, err);
+    if (!rc && w->has_contacts)
+        rc = create_flat(w, &w->contacts, &f->contacts, err);
+    if (!rc && w->has_walls)
+        rc = create_flat(w, &w->walls, &f->walls, err);
+    w->started = 1;
+    return rc;
+}
+
+/* ---- appending ---- */
+
+/* Writes `rows` rows of ncomp values at (row0[, col0]) of a dataset whose
+ * dimension 0 (and 1 for rank-3 particle data) has already been extended. */
+static herr_t write_block(hid_t ds, hid_t memtype, int rank, const hsize_t *start,
+                          const hsize_t *count, const void *buf)
+{
+    hid_t fs = H5Dget_space(ds);
+    hsize_t mcount = 1;
+    for (int d = 0; d < rank; d++)
+        mcount *= count[d];
+    hid_t ms = H5Screate_simple(1, &mcount, NULL);
+    herr_t rc = H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
+    if (rc >= 0 && mcount > 0)
+        rc = H5Dwrite(ds, memtype, ms, fs, H5P_DEFAULT, buf);
+    H5Sclose(ms);
+    H5Sclose(fs);
+    return rc;
+}
+
+static herr_t append_scalar(hid_t ds, hsize_t at, hid_t memtype, const void *value)
+{
+    hsize_t n = at + 1, count = 1;
+    if (H5Dset_extent(ds, &n) < 0)
+        return -1;
+    return write_block(ds, memtype, 1, &at, &count, value);
+}
+
+/* Converts index columns to particle ids in the scratch buffer. */
+static int index_to_ids(mimas_writer *w, const size_t *idx, size_t n, const mimas_particles *p,
+                        const char *what, mimas_error *err)
+{
+    if (n > w->ids_cap) {
+        int64_t *b = realloc(w->ids, n * sizeof *b);
+        if (!b)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        w->ids = b;
+        w->ids_cap = n;
+    }
+    for (size_t k = 0; k < n; k++) {
+        if (idx[k] >= p->n)
+            return mimas_error_set(err, MIMAS_EDATA,
+                                   "%s row %zu refers to particle %zu of a frame of %zu", what,
+                                   k, idx[k], p->n);
+        w->ids[k] = p->id[idx[k]];
+    }
+    return MIMAS_OK;
+}
+
+static int stage_particles(mimas_writer *w, const mimas_frame *f, mimas_error *err)
+{
+    const mimas_particles *p = &f->particles;
+    hsize_t k = w->frames;
+    if (p->n > w->nmax)
+        w->nmax = p->n;
+    for (size_t c = 0; c < w->npcols; c++) {
+        native_col *nc = &w->pcols[c];
+        int rank = nc->ncomp == 1 ? 2 : 3;
+        hsize_t ext[3] = {k + 1, w->nmax, (hsize_t)nc->ncomp};
+        hsize_t start[3] = {k, 0, 0}, count[3] = {1, p->n, (hsize_t)nc->ncomp};
+        if (H5Dset_extent(nc->ds, ext) < 0 ||
+            write_block(nc->ds, native_mem_type(nc->type), rank, start, count,
+                        native_col_data(p, &mimas_particles_desc, nc)) < 0)
+            return h5fail(w, err, "write particle data");
+    }
+    double edges[3][3];
+    mimas_box_edges(&f->box, edges);
+    double diag[3] = {edges[0][0], edges[1][1], edges[2][2]};
+    hsize_t ext[3] = {k + 1, 3, 3}, start[3] = {k, 0, 0}, count[3] = {1, 3, 3};
+    int64_t n = (int64_t)p->n;
+    if (H5Dset_extent(w->box_edges, ext) < 0 ||
+        write_block(w->box_edges, H5T_NATIVE_DOUBLE, w->triclinic ? 3 : 2, start, count,
+                    w->triclinic ? (const void *)edges : (const void *)diag) < 0 ||
+        H5Dset_extent(w->box_lower, ext) < 0 ||
+        write_block(w->box_lower, H5T_NATIVE_DOUBLE, 2, start, count, f->box.lo) < 0 ||
+        H5Dset_extent(w->box_upper, ext) < 0 ||
+        write_block(w->box_upper, H5T_NATIVE_DOUBLE, 2, start, count, f->box.hi) < 0 ||
+        append_scalar(w->count, k, H5T_NATIVE_INT64, &n) < 0 ||
+        append_scalar(w->clock_step, k, H5T_NATIVE_INT64, &f->step) < 0 ||
+        append_scalar(w->clock_time, k, H5T_NATIVE_DOUBLE, &f->time) < 0)
+        return h5fail(w, err, "write the box, count, step and time");
+    return MIMAS_OK;
+}
+
+static int stage_flat(mimas_writer *w, flat_table *t, const void *tab, const mimas_frame *f,
+                      mimas_error *err)
+{
+    size_t n = mimas_table_n(tab, t->desc);
+    hsize_t row0 = t->rows, end = t->rows + n;
+    for (size_t c = 0; c < t->ncols; c++) {
+        native_col *nc = &t->cols[c];
+        int rank = nc->ncomp == 1 ? 1 : 2;
+        hsize_t ext[2] = {end, (hsize_t)nc->ncomp};
+        hsize_t start[2] = {row0, 0}, count[2] = {n, (hsize_t)nc->ncomp};
+        const void *data = native_col_data(tab, t->desc, nc);
+        if (nc->type == MIMAS_T_INDEX) {
+            int rc = index_to_ids(w, data, n, &f->particles, t->desc->name, err);
+            if (rc)
+                return rc;
+            data = w->ids;
+        }
+        if (H5Dset_extent(nc->ds, ext) < 0 ||
+            write_block(nc->ds, native_mem_type(nc->type), rank, start, count, data) < 0)
+            return h5fail(w, err, "write contact data");
+    }
+    int64_t off = (int64_t)end;
+    if (append_scalar(t->offset, w->frames + 1, H5T_NATIVE_INT64, &off) < 0 ||
+        append_scalar(t->step, w->frames, H5T_NATIVE_INT64, &f->step) < 0 ||
+        append_scalar(t->time, w->frames, H5T_NATIVE_DOUBLE, &f->time) < 0)
+        return h5fail(w, err, "write the contact index");
+    t->rows = end;
+    return MIMAS_OK;
+}
+
+/* Everything of an append except the commit (flush); split out so that the
+ * crash-recovery test can stop a writer between the two. */
+int mimas_writer_stage(mimas_writer *w, const mimas_frame *f, mimas_error *err);
+int mimas_writer_commit(mimas_writer *w, mimas_error *err);
+
+int mimas_writer_stage(mimas_writer *w, const mimas_frame *f, mimas_error *err)
+{
+    int rc = mimas_table_require(&f->particles, &mimas_particles_desc,
+                                 mimas_particles_desc.required, err);
+    if (rc)
+        return mimas_error_prefix(err, "%s", w->path);
+    h5_quiet q;
+    h5_quiet_begin(&q);
+    rc = w->started ? check_same_layout(w, f, err) : start_layout(w, f, err);
+    if (!rc)
+        rc = stage_particles(w, f, err);
+    if (!rc && w->has_contacts)
+        rc = stage_flat(w, &w->contacts, &f->contacts, f, err);
+    if (!rc && w->has_walls)
+        rc = stage_flat(w, &w->walls, &f->walls, f, err);
+    h5_quiet_end(&q);
+    if (rc && rc != MIMAS_EIO)
+        mimas_error_prefix(err, "%s: frame %zu (step %lld)", w->path, w->frames,
+                           (long long)f->step);
+    return rc;
+}
+
+int mimas_writer_commit(mimas_writer *w, mimas_error *err)
+{
+    h5_quiet q;
+    h5_quiet_begin(&q);
+    int rc = H5Fflush(w->file, H5F_SCOPE_LOCAL) < 0 ? h5fail(w, err, "flush") : MIMAS_OK;
+    h5_quiet_end(&q);
+    if (!rc)
+        w->frames++;
+    return rc;
+}
+
+int mimas_writer_append(mimas_writer *w, const mimas_frame *f, mimas_error *err)
+{
+    int rc = mimas_writer_stage(w, f, err);
+    return rc ? rc : mimas_writer_commit(w, err);
+}
+
+/* ---- closing ---- */
+
+static void close_cols(native_col *cols, size_t n)
+{
+    for (size_t c = 0; c < n; c++)
+        if (cols[c].ds > 0)
+            H5Dclose(cols[c].ds);
+    free(cols);
+}
+
+static void close_flat(flat_table *t)
+{
+    hid_t ids[3] = {t->step, t->time, t->offset};
+    for (int k = 0; k < 3; k++)
+        if (ids[k] > 0)
+            H5Dclose(ids[k]);
+    close_cols(t->cols, t->ncols);
+}
+
+static herr_t release(mimas_writer *w)
+{
+    close_cols(w->pcols, w->npcols);
+    close_flat(&w->contacts);
+    close_flat(&w->walls);
+    hid_t ids[6] = {w->clock_step, w->clock_time, w->box_edges,
+                    w->box_lower, w->box_upper, w->count};
+    for (int k = 0; k < 6; k++)
+        if (ids[k] > 0)
+            H5Dclose(ids[k]);
+    herr_t rc = w->file > 0 ? H5Fclose(w->file) : 0;
+    free(w->ids);
+    return rc;
+}
+
+int mimas_writer_close(mimas_writer *w, mimas_error *err)
+{
+    h5_quiet q;
+    h5_quiet_begin(&q);
+    int rc = release(w) < 0 ? h5fail(w, err, "close the file") : MIMAS_OK;
+    h5_quiet_end(&q);
+    if (!rc && w->opt.atomic && rename(w->open_path, w->path) != 0)
+        rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot rename the finished file into place",
+                             w->path);
+    if (rc)
+        remove(w->open_path);
+    free(w->path);
+    free(w->open_path);
+    free(w);
+    return rc;
+}
+
+void mimas_writer_abort(mimas_writer *w)
+{
+    if (!w)
+        return;
+    h5_quiet q;
+    h5_quiet_begin(&q);
+    release(w);
+    h5_quiet_end(&q);
+    remove(w->open_path);
+    free(w->path);
+    free(w->open_path);
+    free(w);
+}

@@ -1,0 +1,157 @@
+/* Data model: generic table operations, the id map and box geometry. */
+#include <config.h>
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "assert_close.h"
+
+#include "frame.h"
+#include "id_index.h"
+
+static void test_required_present_after_init(void **state)
+{
+    (void)state;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    assert_int_equal(mimas_table_present(&f.particles, &mimas_particles_desc),
+                     MIMAS_P_ID | MIMAS_P_POS);
+    assert_int_equal(mimas_table_present(&f.contacts, &mimas_contacts_desc),
+                     MIMAS_C_I | MIMAS_C_J);
+    assert_null(f.particles.vel);
+    mimas_frame_free(&f);
+}
+
+static void test_resize_keeps_values(void **state)
+{
+    (void)state;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    mimas_error err;
+    assert_int_equal(mimas_table_set_present(&f.particles, &mimas_particles_desc,
+                                             MIMAS_P_VEL | MIMAS_P_RADIUS, &err), MIMAS_OK);
+    assert_int_equal(mimas_table_resize(&f.particles, &mimas_particles_desc, 10, &err), 0);
+    for (size_t k = 0; k < 10; k++) {
+        f.particles.id[k] = (int64_t)k;
+        f.particles.vel[k][2] = (double)k;
+        f.particles.radius[k] = 0.5 * (double)k;
+    }
+    size_t e;
+    assert_int_equal(mimas_table_add_extra(&f.particles, &mimas_particles_desc, "q", 2, &e,
+                                           &err), MIMAS_OK);
+    f.particles.extra[e].data[19] = 7.0;
+    assert_int_equal(mimas_table_resize(&f.particles, &mimas_particles_desc, 100000, &err), 0);
+    assert_true(f.particles.cap >= 100000);
+    for (size_t k = 0; k < 10; k++) {
+        assert_int_equal(f.particles.id[k], (int64_t)k);
+        assert_true(f.particles.vel[k][2] == (double)k);
+        assert_true(f.particles.radius[k] == 0.5 * (double)k);
+    }
+    assert_true(f.particles.extra[e].data[19] == 7.0);
+    /* a second add of the same name finds it; a different width is an error */
+    size_t e2;
+    assert_int_equal(mimas_table_add_extra(&f.particles, &mimas_particles_desc, "q", 2, &e2,
+                                           &err), MIMAS_OK);
+    assert_int_equal(e2, e);
+    assert_int_equal(mimas_table_add_extra(&f.particles, &mimas_particles_desc, "q", 3, &e2,
+                                           &err), MIMAS_EDATA);
+    assert_int_equal(mimas_table_add_extra(&f.particles, &mimas_particles_desc, "velocity", 3,
+                                           &e2, &err), MIMAS_EDATA);
+    mimas_frame_free(&f);
+}
+
+static void test_require_names_missing(void **state)
+{
+    (void)state;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    mimas_error err;
+    assert_int_equal(mimas_table_require(&f.contacts, &mimas_contacts_desc,
+                                         MIMAS_C_I | MIMAS_C_POINT, &err), MIMAS_EMISSING);
+    assert_string_equal(err.msg, "contacts have no contact_point");
+    assert_int_equal(mimas_table_require(&f.particles, &mimas_particles_desc, MIMAS_P_ID, &err),
+                     MIMAS_OK);
+    mimas_frame_free(&f);
+}
+
+static void test_clear_drops_optional(void **state)
+{
+    (void)state;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    mimas_error err;
+    mimas_table_set_present(&f.walls, &mimas_walls_desc, MIMAS_W_FORCE, &err);
+    mimas_table_resize(&f.walls, &mimas_walls_desc, 5, &err);
+    f.has_walls = 1;
+    mimas_frame_clear(&f);
+    assert_int_equal(f.walls.n, 0);
+    assert_null(f.walls.force);
+    assert_non_null(f.walls.particle);
+    assert_int_equal(f.has_walls, 0);
+    mimas_frame_free(&f);
+}
+
+static void test_id_index_dense_and_sorted(void **state)
+{
+    (void)state;
+    mimas_id_index x;
+    mimas_id_index_init(&x);
+    mimas_error err;
+    int64_t dense[] = {5, 3, 9, 4};
+    assert_int_equal(mimas_id_index_build(&x, dense, 4, &err), MIMAS_OK);
+    size_t k;
+    assert_true(mimas_id_index_find(&x, 9, &k));
+    assert_int_equal(k, 2);
+    assert_false(mimas_id_index_find(&x, 6, &k));
+    assert_false(mimas_id_index_find(&x, 2, &k));
+    assert_false(mimas_id_index_find(&x, 100, &k));
+    int64_t sparse[] = {1000000000000LL, -7, 42};
+    assert_int_equal(mimas_id_index_build(&x, sparse, 3, &err), MIMAS_OK);
+    assert_int_equal(x.span, 0); /* sorted mode */
+    assert_true(mimas_id_index_find(&x, -7, &k));
+    assert_int_equal(k, 1);
+    assert_true(mimas_id_index_find(&x, 1000000000000LL, &k));
+    assert_int_equal(k, 0);
+    assert_false(mimas_id_index_find(&x, 43, &k));
+    int64_t dup[] = {1, 2, 1};
+    assert_int_equal(mimas_id_index_build(&x, dup, 3, &err), MIMAS_EDATA);
+    assert_string_equal(err.msg, "duplicate particle id 1");
+    int64_t dup_sparse[] = {1, 1LL << 40, 1LL << 40};
+    assert_int_equal(mimas_id_index_build(&x, dup_sparse, 3, &err), MIMAS_EDATA);
+    mimas_id_index_free(&x);
+}
+
+static void test_box_geometry(void **state)
+{
+    (void)state;
+    mimas_box b = {{-1, 0, 2}, {1, 3, 6}, 0.5, -0.25, 0.75, {1, 1, 0}};
+    assert_true(mimas_box_is_triclinic(&b));
+    /* volume = |a . (b x c)| of the edge vectors: the tilt does not change it */
+    double e[3][3];
+    mimas_box_edges(&b, e);
+    double cx = e[1][1] * e[2][2] - e[1][2] * e[2][1];
+    double cy = e[1][2] * e[2][0] - e[1][0] * e[2][2];
+    double cz = e[1][0] * e[2][1] - e[1][1] * e[2][0];
+    double triple = e[0][0] * cx + e[0][1] * cy + e[0][2] * cz;
+    assert_close(mimas_box_volume(&b), 24.0, 0.0);
+    assert_close(triple, 24.0, 1e-15);
+    assert_true(e[1][0] == 0.5 && e[2][0] == -0.25 && e[2][1] == 0.75);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_required_present_after_init),
+        cmocka_unit_test(test_resize_keeps_values),
+        cmocka_unit_test(test_require_names_missing),
+        cmocka_unit_test(test_clear_drops_optional),
+        cmocka_unit_test(test_id_index_dense_and_sorted),
+        cmocka_unit_test(test_box_geometry),
+    };
+    return cmocka_run_group_tests_name("frame", tests, NULL, NULL);
+}

@@ -1,0 +1,333 @@
+/* Native format: round trip, random access, crash recovery and bad files. */
+#include <config.h>
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include <hdf5.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "native.h"
+#include "random_frame.h"
+
+/* internal: an append without its commit (src/native_write.c) */
+int mimas_writer_stage(mimas_writer *w, const mimas_frame *f, mimas_error *err);
+
+static char dir[] = "/tmp/mimas-test-native-XXXXXX";
+
+static const char *tmp(const char *name)
+{
+    static char buf[4][256];
+    static int k;
+    k = (k + 1) % 4;
+    snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
+    return buf[k];
+}
+
+/* Frame k of a reproducible sequence: counts vary; frame 2 has no contacts;
+ * frame 4 has more particles than any earlier one. */
+static void make_frame(mimas_frame *f, unsigned long seed, size_t k, int triclinic)
+{
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(rng, seed * 1000 + k);
+    random_frame_spec s = {300 + 37 * k, k == 2 ? 0 : 900 + 11 * k, 40 + k, 1, triclinic, 1, 1};
+    if (k == 4)
+        s.particles = 5000;
+    assert_int_equal(random_frame(f, rng, &s, (int64_t)(100 * k)), 0);
+    gsl_rng_free(rng);
+}
+
+static void write_frames(const char *path, unsigned long seed, size_t nframes, int triclinic)
+{
+    mimas_writer *w;
+    mimas_error err;
+    mimas_writer_options o;
+    mimas_writer_options_default(&o);
+    assert_int_equal(mimas_writer_open(&w, path, &o, &err), MIMAS_OK);
+    mimas_frame f;
+    mimas_frame_init(&f);
+    for (size_t k = 0; k < nframes; k++) {
+        make_frame(&f, seed, k, triclinic);
+        int rc = mimas_writer_append(w, &f, &err);
+        if (rc)
+            fail_msg("append: %s", err.msg);
+    }
+    mimas_frame_free(&f);
+    assert_int_equal(mimas_writer_close(w, &err), MIMAS_OK);
+}
+
+static void check_frames(const char *path, unsigned long seed, size_t nframes, int triclinic,
+                         int reverse)
+{
+    mimas_native *r;
+    mimas_error err;
+    int rc = mimas_native_open(&r, path, &err);
+    if (rc)
+        fail_msg("open: %s", err.msg);
+    assert_int_equal(mimas_native_frames(r), nframes);
+    mimas_frame a, b;
+    mimas_frame_init(&a);
+    mimas_frame_init(&b);
+    for (size_t m = 0; m < nframes; m++) {
+        size_t k = reverse ? nframes - 1 - m : m;
+        make_frame(&a, seed, k, triclinic);
+        rc = mimas_native_read(r, k, &b, &err);
+        if (rc)
+            fail_msg("read %zu: %s", k, err.msg);
+        char why[200];
+        if (!frames_equal(&a, &b, why, sizeof why))
+            fail_msg("frame %zu: %s", k, why);
+        mimas_frame_meta meta;
+        assert_int_equal(mimas_native_frame_meta(r, k, &meta, &err), MIMAS_OK);
+        assert_int_equal(meta.n_particles, a.particles.n);
+        assert_int_equal(meta.n_contacts, a.contacts.n);
+        assert_int_equal(meta.n_walls, a.walls.n);
+    }
+    assert_int_equal(mimas_native_read(r, nframes, &b, &err), MIMAS_EUSAGE);
+    mimas_frame_free(&a);
+    mimas_frame_free(&b);
+    mimas_native_close(r);
+}
+
+static void test_round_trip(void **state)
+{
+    (void)state;
+    write_frames(tmp("rt.h5"), 1, 6, 0);
+    check_frames(tmp("rt.h5"), 1, 6, 0, 0);
+}
+
+static void test_random_access_reverse(void **state)
+{
+    (void)state;
+    write_frames(tmp("rev.h5"), 2, 6, 0);
+    check_frames(tmp("rev.h5"), 2, 6, 0, 1);
+}
+
+static void test_triclinic_round_trip(void **state)
+{
+    (void)state;
+    write_frames(tmp("tri.h5"), 3, 5, 1);
+    check_frames(tmp("tri.h5"), 3, 5, 1, 0);
+}
+
+static off_t file_size(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 ? st.st_size : -1;
+}
+
+/* A writer killed with SIGKILL in the middle of a frame: the child commits 4
+ * frames, writes most of a fifth (large, so its data reaches the disk), and
+ * is killed before committing it. */
+static void test_killed_writer_keeps_committed_frames(void **state)
+{
+    (void)state;
+    const char *path = tmp("killed.h5");
+    int fd[2];
+    assert_int_equal(pipe(fd), 0);
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        close(fd[0]);
+        mimas_writer *w;
+        mimas_error err;
+        if (mimas_writer_open(&w, path, NULL, &err))
+            _exit(3);
+        mimas_frame f;
+        mimas_frame_init(&f);
+        for (size_t k = 0; k < 4; k++) {
+            make_frame(&f, 4, k, 0);
+            if (mimas_writer_append(w, &f, &err))
+                _exit(3);
+        }
+        off_t committed = file_size(path);
+        if (write(fd[1], &committed, sizeof committed) != sizeof committed)
+            _exit(3);
+        gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+        random_frame_spec big = {200000, 600000, 1000, 1, 0, 1, 1};
+        random_frame(&f, rng, &big, 999);
+        mimas_writer_stage(w, &f, &err);
+        raise(SIGKILL);
+        _exit(4);
+    }
+    close(fd[1]);
+    off_t committed = -1;
+    assert_int_equal(read(fd[0], &committed, sizeof committed), sizeof committed);
+    close(fd[0]);
+    int status;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+    off_t killed = file_size(path);
+    /* the uncommitted frame's data did reach the file */
+    assert_true(killed > committed + 1000000);
+    check_frames(path, 4, 4, 0, 0);
+
+    /* cut the file in the middle of the uncommitted frame: still 4 frames */
+    assert_int_equal(truncate(path, committed + (killed - committed) / 2), 0);
+    check_frames(path, 4, 4, 0, 0);
+    /* cut right at the end of the last commit: still 4 frames */
+    assert_int_equal(truncate(path, committed), 0);
+    check_frames(path, 4, 4, 0, 0);
+
+    /* cut into committed data: a clear error, not garbage */
+    assert_int_equal(truncate(path, committed / 2), 0);
+    mimas_native *r;
+    mimas_error err;
+    assert_int_equal(mimas_native_open(&r, path, &err), MIMAS_EDATA);
+    assert_non_null(strstr(err.msg, path));
+    assert_non_null(strstr(err.msg, "cut short"));
+}
+
+static void expect_open_error(const char *path, const char *fragment)
+{
+    mimas_native *r = NULL;
+    mimas_error err;
+    int rc = mimas_native_open(&r, path, &err);
+    assert_int_equal(rc, MIMAS_EDATA);
+    assert_null(r);
+    assert_int_equal(mimas_exit_status(rc), 2);
+    /* one line that names the file and the problem */
+    assert_int_equal(strncmp(err.msg, path, strlen(path)), 0);
+    assert_null(strchr(err.msg, '\n'));
+    if (!strstr(err.msg, fragment))
+        fail_msg("message '%s' lacks '%s'", err.msg, fragment);
+}
+
+static void test_bad_files(void **state)
+{
+    (void)state;
+    FILE *fp = fopen(tmp("text.h5"), "w");
+    fputs("ITEM: TIMESTEP\n0\n", fp);
+    fclose(fp);
+    expect_open_error(tmp("text.h5"), "not an HDF5 file");
+
+    fclose(fopen(tmp("empty.h5"), "w"));
+    expect_open_error(tmp("empty.h5"), "empty file");
+
+    expect_open_error(tmp("does-not-exist.h5"), "No such file");
+
+    /* an HDF5 file that is not ours */
+    hid_t f = H5Fcreate(tmp("other.h5"), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    H5Fclose(f);
+    expect_open_error(tmp("other.h5"), "not an H5MD file");
+
+    /* missing dataset */
+    write_frames(tmp("missing.h5"), 5, 2, 0);
+    f = H5Fopen(tmp("missing.h5"), H5F_ACC_RDWR, H5P_DEFAULT);
+    assert_true(H5Ldelete(f, "/particles/all/position/value", H5P_DEFAULT) >= 0);
+    H5Fclose(f);
+    expect_open_error(tmp("missing.h5"), "missing dataset /particles/all/position/value");
+
+    write_frames(tmp("nooffset.h5"), 5, 2, 0);
+    f = H5Fopen(tmp("nooffset.h5"), H5F_ACC_RDWR, H5P_DEFAULT);
+    assert_true(H5Ldelete(f, "/contacts/all/offset", H5P_DEFAULT) >= 0);
+    H5Fclose(f);
+    expect_open_error(tmp("nooffset.h5"), "missing dataset /contacts/all/offset");
+
+    /* a newer major version */
+    write_frames(tmp("newer.h5"), 6, 1, 0);
+    f = H5Fopen(tmp("newer.h5"), H5F_ACC_RDWR, H5P_DEFAULT);
+    hid_t g = H5Gopen2(f, "/mimas", H5P_DEFAULT);
+    hid_t a = H5Aopen(g, "format_version", H5P_DEFAULT);
+    int v[2] = {2, 0};
+    assert_true(H5Awrite(a, H5T_NATIVE_INT, v) >= 0);
+    H5Aclose(a);
+    H5Gclose(g);
+    H5Fclose(f);
+    expect_open_error(tmp("newer.h5"), "format version 2.0 is newer");
+}
+
+static void test_writer_rejects_inconsistent_frames(void **state)
+{
+    (void)state;
+    mimas_writer *w;
+    mimas_error err;
+    mimas_writer_options o;
+    mimas_writer_options_default(&o);
+    o.atomic = 1;
+    const char *path = tmp("atomic.h5");
+    assert_int_equal(mimas_writer_open(&w, path, &o, &err), MIMAS_OK);
+    mimas_frame f;
+    mimas_frame_init(&f);
+    make_frame(&f, 7, 0, 0);
+    assert_int_equal(mimas_writer_append(w, &f, &err), MIMAS_OK);
+    /* atomic: nothing at the final name before close */
+    assert_int_equal(file_size(path), -1);
+    mimas_table_keep_only(&f.particles, &mimas_particles_desc, MIMAS_P_RADIUS);
+    assert_int_equal(mimas_writer_append(w, &f, &err), MIMAS_EDATA);
+    assert_non_null(strstr(err.msg, "other quantities"));
+    make_frame(&f, 7, 1, 0);
+    f.contacts.j[3] = f.particles.n + 5;
+    assert_int_equal(mimas_writer_append(w, &f, &err), MIMAS_EDATA);
+    assert_non_null(strstr(err.msg, "refers to particle"));
+    mimas_writer_abort(w);
+    assert_int_equal(file_size(path), -1);
+    mimas_frame_free(&f);
+}
+
+static void test_unknown_contact_id_is_reported(void **state)
+{
+    (void)state;
+    const char *path = tmp("badid.h5");
+    write_frames(path, 8, 2, 0);
+    hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    hid_t ds = H5Dopen2(f, "/contacts/all/j", H5P_DEFAULT);
+    hid_t fs = H5Dget_space(ds);
+    hsize_t start = 5, one = 1;
+    H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, NULL, &one, NULL);
+    hid_t ms = H5Screate_simple(1, &one, NULL);
+    int64_t bogus = 2; /* ids are 3k+1: 2 is never one */
+    assert_true(H5Dwrite(ds, H5T_NATIVE_INT64, ms, fs, H5P_DEFAULT, &bogus) >= 0);
+    H5Sclose(ms);
+    H5Sclose(fs);
+    H5Dclose(ds);
+    H5Fclose(f);
+    mimas_native *r;
+    mimas_error err;
+    assert_int_equal(mimas_native_open(&r, path, &err), MIMAS_OK);
+    mimas_frame fr;
+    mimas_frame_init(&fr);
+    assert_int_equal(mimas_native_read(r, 0, &fr, &err), MIMAS_EDATA);
+    assert_non_null(strstr(err.msg, "names particle id 2"));
+    assert_int_equal(mimas_native_read(r, 1, &fr, &err), MIMAS_OK);
+    mimas_frame_free(&fr);
+    mimas_native_close(r);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    return system(cmd);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_round_trip),
+        cmocka_unit_test(test_random_access_reverse),
+        cmocka_unit_test(test_triclinic_round_trip),
+        cmocka_unit_test(test_killed_writer_keeps_committed_frames),
+        cmocka_unit_test(test_bad_files),
+        cmocka_unit_test(test_writer_rejects_inconsistent_frames),
+        cmocka_unit_test(test_unknown_contact_id_is_reported),
+    };
+    return cmocka_run_group_tests_name("native", tests, setup, teardown);
+}
