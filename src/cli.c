@@ -41,6 +41,55 @@ void cli_print_help(const cli_command *cmd, FILE *out)
     }
 }
 
+/* roff needs backslashes doubled and leading dots or quotes escaped */
+static void roff_text(FILE *out, const char *s)
+{
+    int bol = 1;
+    for (; *s; s++) {
+        if (bol && (*s == '.' || *s == '\''))
+            fputs("\\&", out);
+        if (*s == '\\')
+            fputs("\\e", out);
+        else if (*s == '-')
+            fputs("\\-", out);
+        else
+            fputc(*s, out);
+        bol = *s == '\n';
+    }
+}
+
+void cli_print_man(const cli_command *cmd, const char *version, FILE *out)
+{
+    fprintf(out, ".TH MIMAS-%s 1 \"\" \"mimas %s\" \"mimas manual\"\n", cmd->name, version);
+    fprintf(out, ".SH NAME\nmimas\\-%s \\- ", cmd->name);
+    roff_text(out, cmd->summary);
+    fprintf(out, "\n.SH SYNOPSIS\n.B mimas %s\n", cmd->name);
+    roff_text(out, cmd->usage);
+    fprintf(out, "\n.SH DESCRIPTION\n");
+    roff_text(out, cmd->description);
+    fprintf(out, "\n.SH OPTIONS\n");
+    for (size_t k = 0; k < cmd->noptions; k++) {
+        const cli_option *o = &cmd->options[k];
+        fprintf(out, ".TP\n");
+        if (o->short_name)
+            fprintf(out, "\\fB\\-%c\\fR, ", o->short_name);
+        fprintf(out, "\\fB\\-\\-");
+        roff_text(out, o->name);
+        fprintf(out, "\\fR");
+        if (o->arg) {
+            fprintf(out, " \\fI");
+            roff_text(out, o->arg);
+            fprintf(out, "\\fR");
+        }
+        fprintf(out, "\n");
+        roff_text(out, o->help);
+        fprintf(out, "\n");
+    }
+    fprintf(out, ".SH EXIT STATUS\n0 on success, 1 on bad usage, 2 on bad input data, with a "
+                 "one\\-line message naming the file and the problem.\n"
+                 ".SH SEE ALSO\n.BR mimas (1)\n");
+}
+
 int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler, void *ctx,
               int *first)
 {

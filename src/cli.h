@@ -35,6 +35,8 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler
               int *first);
 
 void cli_print_help(const cli_command *cmd, FILE *out);
+/* The command's man page (roff), from the same declaration as --help. */
+void cli_print_man(const cli_command *cmd, const char *version, FILE *out);
 /* "mimas NAME: message" on stderr; returns status. */
 int cli_fail(const cli_command *cmd, int status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));

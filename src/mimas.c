@@ -24,6 +24,18 @@ static void usage(FILE *out)
     fprintf(out, "\n'mimas COMMAND --help' describes a command's options.\n");
 }
 
+static void man_page(FILE *out)
+{
+    fprintf(out, ".TH MIMAS 1 \"\" \"mimas %s\" \"mimas manual\"\n"
+                 ".SH NAME\nmimas \\- micro\\-macro averaging and analysis of granular (DEM) "
+                 "simulation data\n.SH SYNOPSIS\n.B mimas\n\\fICOMMAND\\fR [options] "
+                 "\\fIINPUT\\fR...\n.br\n.B mimas help\n[\\fICOMMAND\\fR]\n"
+                 ".SH COMMANDS\n", PACKAGE_VERSION);
+    for (size_t k = 0; k < NCOMMANDS; k++)
+        fprintf(out, ".TP\n.BR mimas\\-%s (1)\n%s\n", commands[k]->name, commands[k]->summary);
+    fprintf(out, ".SH EXIT STATUS\n0 on success, 1 on bad usage, 2 on bad input data.\n");
+}
+
 static const cli_command *find(const char *name)
 {
     for (size_t k = 0; k < NCOMMANDS; k++)
@@ -48,6 +60,19 @@ int main(int argc, char **argv)
         return 0;
     }
     if (!strcmp(name, "help")) {
+        /* help --man [COMMAND]: the man pages are generated from the same tables */
+        if (argc >= 3 && !strcmp(argv[2], "--man")) {
+            const cli_command *c = argc >= 4 ? find(argv[3]) : NULL;
+            if (argc >= 4 && !c) {
+                fprintf(stderr, "mimas: unknown command '%s' (see mimas help)\n", argv[3]);
+                return 1;
+            }
+            if (c)
+                cli_print_man(c, PACKAGE_VERSION, stdout);
+            else
+                man_page(stdout);
+            return 0;
+        }
         if (argc < 3) {
             usage(stdout);
             return 0;

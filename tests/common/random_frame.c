@@ -15,8 +15,10 @@ static void fill_column(void *arr, const mimas_column_desc *c, size_t n, size_t 
     size_t m = n * (size_t)c->ncomp;
     switch (c->type) {
     case MIMAS_T_F64:
+        /* two draws: mt19937 gives 32 random bits, a double has 53 */
         for (size_t k = 0; k < m; k++)
-            ((double *)arr)[k] = gsl_rng_uniform(rng) * 2.0 - 1.0;
+            ((double *)arr)[k] =
+                (gsl_rng_uniform(rng) + 0x1p-32 * gsl_rng_uniform(rng)) * 2.0 - 1.0;
         break;
     case MIMAS_T_I32:
         for (size_t k = 0; k < m; k++)
