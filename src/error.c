@@ -46,7 +46,7 @@ void mimas_error_clear(mimas_error *err)
 
 int mimas_exit_status(int code)
 {
-    if (code == MIMAS_OK)
+    if (code == MIMAS_OK || code == MIMAS_END)
         return 0;
     return code == MIMAS_EUSAGE ? 1 : 2;
 }

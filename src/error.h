@@ -13,7 +13,8 @@ enum mimas_status {
     MIMAS_EUSAGE = 1,   /* bad arguments: exit status 1 */
     MIMAS_EDATA = 2,    /* bad or unreadable input data: exit status 2 */
     MIMAS_EIO = 3,      /* the system refused (cannot write, no memory): exit status 2 */
-    MIMAS_EMISSING = 4  /* a quantity the computation needs is absent: exit status 2 */
+    MIMAS_EMISSING = 4, /* a quantity the computation needs is absent: exit status 2 */
+    MIMAS_END = 5       /* not an error: a stream has no more frames */
 };
 
 #define MIMAS_ERROR_MSG_MAX 512
@@ -33,7 +34,7 @@ int mimas_error_prefix(mimas_error *err, const char *fmt, ...)
 
 void mimas_error_clear(mimas_error *err);
 
-/* Exit status for a code: 0, 1 (usage) or 2 (everything else). */
+/* Exit status for a code: 0 (also for MIMAS_END), 1 (usage) or 2 (everything else). */
 int mimas_exit_status(int code);
 
 #ifdef __cplusplus

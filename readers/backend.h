@@ -1,0 +1,30 @@
+/* What each input format provides to readers/reader.c (one file per format
+ * under readers/).  A backend streams frames of one or more inputs. */
+#ifndef MIMAS_READER_BACKEND_H
+#define MIMAS_READER_BACKEND_H
+
+#include <stddef.h>
+
+#include "error.h"
+#include "frame.h"
+#include "reader.h"
+
+typedef struct reader_backend {
+    const char *name;   /* --format value: "native", "lammps", "mercury" */
+    const char *title;  /* shown by mimas info: "LAMMPS/LIGGGHTS dump" */
+    /* 1 if a file whose first n bytes (decompressed if gzip) are head looks
+     * like this format's main input */
+    int (*probe)(const char *path, const char *head, size_t n);
+    int (*open)(void **state, const char *const *inputs, size_t ninputs,
+                const mimas_reader_options *o, mimas_error *err);
+    /* MIMAS_OK with the next frame in f, MIMAS_END, or an error */
+    int (*next)(void *state, mimas_frame *f, mimas_error *err);
+    size_t (*skipped)(void *state); /* may be NULL */
+    void (*close)(void *state);
+} reader_backend;
+
+extern const reader_backend reader_native;
+extern const reader_backend reader_lammps;
+extern const reader_backend reader_mercury;
+
+#endif

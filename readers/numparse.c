@@ -1,0 +1,138 @@
+/* The fast path is Clinger's: a decimal with at most 19 significant digits
+ * whose integer mantissa m is below 2^53 and whose decimal exponent e has
+ * |e| <= 22 is exactly m * 10^e or m / 10^-e, both exactly representable
+ * operands, so one IEEE operation rounds correctly.  LAMMPS' default "%g"
+ * output (6 digits) always takes it; anything else goes to strtod. */
+#include <config.h>
+
+#include "numparse.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+
+static const double pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                       1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+static inline int is_blank(char c)
+{
+    return c == ' ' || c == '\t';
+}
+
+static inline int is_end(char c)
+{
+    return c == '\0' || is_blank(c) || c == '\n' || c == '\r';
+}
+
+int skip_token(char **pp)
+{
+    char *p = *pp;
+    while (is_blank(*p))
+        p++;
+    if (*p == '\0')
+        return -1;
+    while (!is_end(*p))
+        p++;
+    *pp = p;
+    return 0;
+}
+
+int parse_double(char **pp, double *v)
+{
+    char *p = *pp;
+    while (is_blank(*p))
+        p++;
+    if (*p == '\0')
+        return -1;
+    char *start = p;
+    int neg = 0;
+    if (*p == '-' || *p == '+')
+        neg = *p++ == '-';
+    uint64_t m = 0;
+    int digits = 0, frac = 0, any = 0;
+    while (*p == '0') { /* leading zeros are not significant */
+        p++;
+        any = 1;
+    }
+    while ((unsigned)(*p - '0') < 10u) {
+        if (digits < 19)
+            m = 10 * m + (uint64_t)(*p - '0');
+        else
+            frac--; /* dropped digit: only the slow path is exact */
+        digits++;
+        p++;
+        any = 1;
+    }
+    if (*p == '.') {
+        p++;
+        if (digits == 0)
+            while (*p == '0') {
+                p++;
+                frac++;
+                any = 1;
+            }
+        while ((unsigned)(*p - '0') < 10u) {
+            if (digits < 19) {
+                m = 10 * m + (uint64_t)(*p - '0');
+                frac++;
+            }
+            digits++;
+            p++;
+            any = 1;
+        }
+    }
+    int e = 0;
+    if (any && (*p == 'e' || *p == 'E')) {
+        char *q = p + 1;
+        int eneg = 0;
+        if (*q == '-' || *q == '+')
+            eneg = *q++ == '-';
+        if ((unsigned)(*q - '0') < 10u) {
+            while ((unsigned)(*q - '0') < 10u) {
+                if (e < 100000)
+                    e = 10 * e + (*q - '0');
+                q++;
+            }
+            if (eneg)
+                e = -e;
+            p = q;
+        }
+    }
+    if (any && is_end(*p) && digits <= 19) {
+        int e10 = e - frac;
+        if (m < (1ull << 53) && e10 >= -22 && e10 <= 22) {
+            double x = (double)m;
+            x = e10 < 0 ? x / pow10_exact[-e10] : x * pow10_exact[e10];
+            *v = neg ? -x : x;
+            *pp = p;
+            return 0;
+        }
+    }
+    /* slow path: strtod on the token (the line is NUL-terminated) */
+    char *end;
+    errno = 0;
+    double x = strtod(start, &end);
+    if (end == start || !is_end(*end) || !isfinite(x))
+        return -2;
+    *v = x;
+    *pp = end;
+    return 0;
+}
+
+int parse_int64(char **pp, int64_t *v)
+{
+    char *p = *pp;
+    while (is_blank(*p))
+        p++;
+    if (*p == '\0')
+        return -1;
+    char *end;
+    errno = 0;
+    long long x = strtoll(p, &end, 10);
+    if (end == p || !is_end(*end) || errno == ERANGE)
+        return -2;
+    *v = (int64_t)x;
+    *pp = end;
+    return 0;
+}

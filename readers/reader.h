@@ -1,0 +1,50 @@
+/* One reader interface for every input format (DESIGN.md "Command line"):
+ * open a list of inputs, take frames one at a time, close.  The format is
+ * detected from the content unless options say otherwise. */
+#ifndef MIMAS_READER_H
+#define MIMAS_READER_H
+
+#include <stddef.h>
+
+#include "error.h"
+#include "frame.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct mimas_reader mimas_reader;
+
+typedef struct mimas_reader_options {
+    const char *format;              /* NULL: detect; "native", "lammps", "mercury" */
+    const char *const *contacts;     /* contact files (LAMMPS/LIGGGHTS local dumps, .fstat) */
+    size_t ncontacts;
+    const char *const *walls;        /* wall-contact files (LIGGGHTS wall/gran/local) */
+    size_t nwalls;
+    const char *contact_columns;     /* the keywords a LIGGGHTS compute was given, or
+                                        LAMMPS pair/local names (see docs/readers.md) */
+    const char *wall_columns;
+    double density;                  /* particle density for masses (0: none given) */
+    int allow_missing_contacts;      /* skip frames that lack contact data */
+} mimas_reader_options;
+
+void mimas_reader_options_default(mimas_reader_options *o);
+
+/* Opens the inputs (several files, or LAMMPS series given as files or a '*'
+ * pattern, are read in timestep order). */
+int mimas_reader_open(mimas_reader **r, const char *const *inputs, size_t ninputs,
+                      const mimas_reader_options *o, mimas_error *err);
+/* Fills f with the next frame: MIMAS_OK, MIMAS_END after the last frame, or
+ * an error whose message names the file and line. */
+int mimas_reader_next(mimas_reader *r, mimas_frame *f, mimas_error *err);
+/* The detected format's name ("mimas native", "LAMMPS dump", "MercuryDPM"). */
+const char *mimas_reader_format(const mimas_reader *r);
+/* Frames dropped so far because their contact data were missing
+ * (only with allow_missing_contacts). */
+size_t mimas_reader_skipped(const mimas_reader *r);
+void mimas_reader_close(mimas_reader *r);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
