@@ -23,6 +23,12 @@ typedef struct reader_backend {
     void (*close)(void *state);
 } reader_backend;
 
+/* Expands '*' patterns in a list of file names (sorted matches); names
+ * without '*' are kept.  Free the result with reader_free_names. */
+int reader_expand_names(const char *const *in, size_t n, char ***out, size_t *nout,
+                        mimas_error *err);
+void reader_free_names(char **names, size_t n);
+
 extern const reader_backend reader_native;
 extern const reader_backend reader_lammps;
 extern const reader_backend reader_mercury;

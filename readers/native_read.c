@@ -186,10 +186,16 @@ static int scan_group(mimas_native *r, const char *group, read_flat *flat, mimas
     H5G_info_t gi;
     if (H5Gget_info(g, &gi) < 0)
         s.rc = bad(r, err, "cannot list group %s", group);
+    /* creation order where the writer kept it (extras in written order) */
+    hid_t gcpl = H5Gget_create_plist(g);
+    unsigned order = 0;
+    H5Pget_link_creation_order(gcpl, &order);
+    H5Pclose(gcpl);
+    H5_index_t by = (order & H5P_CRT_ORDER_INDEXED) ? H5_INDEX_CRT_ORDER : H5_INDEX_NAME;
     for (hsize_t k = 0; !s.rc && k < gi.nlinks; k++) {
         char name[64];
-        ssize_t len = H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, name,
-                                         sizeof name, H5P_DEFAULT);
+        ssize_t len = H5Lget_name_by_idx(g, ".", by, H5_ITER_INC, k, name, sizeof name,
+                                         H5P_DEFAULT);
         if (len < 0 || (size_t)len >= sizeof name)
             s.rc = bad(r, err, "a member of %s has an unreadable or overlong name", group);
         else if (scan_member(g, name, &s) && !s.rc)

@@ -25,13 +25,15 @@ typedef struct mimas_reader_options {
                                         LAMMPS pair/local names (see docs/readers.md) */
     const char *wall_columns;
     double density;                  /* particle density for masses (0: none given) */
+    double timestep;                 /* dt: time = step * dt for dumps without ITEM: TIME
+                                        (0: such frames have time NaN, "unknown") */
     int allow_missing_contacts;      /* skip frames that lack contact data */
 } mimas_reader_options;
 
 void mimas_reader_options_default(mimas_reader_options *o);
 
 /* Opens the inputs (several files, or LAMMPS series given as files or a '*'
- * pattern, are read in timestep order). */
+ * pattern, are read in timestep order).  The strings of o must outlive r. */
 int mimas_reader_open(mimas_reader **r, const char *const *inputs, size_t ninputs,
                       const mimas_reader_options *o, mimas_error *err);
 /* Fills f with the next frame: MIMAS_OK, MIMAS_END after the last frame, or

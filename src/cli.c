@@ -11,6 +11,84 @@
 
 #define MAX_OPTIONS 64
 
+static const cli_option input_options[] = {
+    {"format", 0, "FMT", "input format: native, lammps or mercury (default: from the content)"},
+    {"contacts", 0, "FILE", "contact dump(s): LIGGGHTS pair/gran/local, LAMMPS pair/local, "
+                            "MercuryDPM .fstat (repeat the option or use a '*' pattern)"},
+    {"wall-contacts", 0, "FILE", "wall-contact dump(s): LIGGGHTS wall/gran/local"},
+    {"contact-columns", 0, "LIST", "what the contact dump's c_ID[k] columns are: the keywords the "
+                                   "LIGGGHTS compute was given (pos,id,force,...,history:3,...) "
+                                   "or LAMMPS names in dump order (patom1,patom2,dist,fx,fy,fz)"},
+    {"wall-columns", 0, "LIST", "the same for the wall-contact dump"},
+    {"density", 0, "RHO", "particle density (kg/m3) for masses when the input has none"},
+    {"timestep", 0, "DT", "time step (s): time = step * DT for dumps without ITEM: TIME"},
+    {"allow-missing-contacts", 0, NULL, "skip frames whose contact data are missing instead of "
+                                        "failing"},
+    {"quiet", 'q', NULL, "no progress output"},
+};
+#define NINPUT (sizeof input_options / sizeof input_options[0])
+
+void cli_inputs_free(cli_inputs *in)
+{
+    free(in->contacts);
+    free(in->walls);
+    memset(in, 0, sizeof *in);
+}
+
+static int push(const char ***list, size_t *n, const char *v)
+{
+    const char **g = realloc(*list, (*n + 1) * sizeof *g);
+    if (!g)
+        return -1;
+    g[(*n)++] = v;
+    *list = g;
+    return 0;
+}
+
+static int input_option(const cli_command *cmd, cli_inputs *in, size_t k, const char *arg)
+{
+    mimas_reader_options *o = &in->opt;
+    double v;
+    switch (k) {
+    case 0: o->format = arg; return 0;
+    case 1:
+        if (push(&in->contacts, &o->ncontacts, arg))
+            return cli_fail(cmd, 2, "out of memory");
+        o->contacts = in->contacts;
+        return 0;
+    case 2:
+        if (push(&in->walls, &o->nwalls, arg))
+            return cli_fail(cmd, 2, "out of memory");
+        o->walls = in->walls;
+        return 0;
+    case 3: o->contact_columns = arg; return 0;
+    case 4: o->wall_columns = arg; return 0;
+    case 5:
+    case 6:
+        if (cli_parse_double(arg, &v) || !(v > 0))
+            return cli_fail(cmd, 1, "--%s needs a positive number, not '%s'",
+                            input_options[k].name, arg);
+        *(k == 5 ? &o->density : &o->timestep) = v;
+        return 0;
+    case 7: o->allow_missing_contacts = 1; return 0;
+    case 8: in->quiet = 1; return 0;
+    }
+    return 1;
+}
+
+int cli_open_inputs(const cli_command *cmd, cli_inputs *in, int argc, char **argv, int first,
+                    mimas_reader **r)
+{
+    if (first >= argc)
+        return cli_fail(cmd, 1, "no input file (see mimas %s --help)", cmd->name);
+    mimas_error err;
+    int rc = mimas_reader_open(r, (const char *const *)argv + first, (size_t)(argc - first),
+                               &in->opt, &err);
+    if (rc)
+        return cli_fail(cmd, mimas_exit_status(rc), "%s", err.msg);
+    return 0;
+}
+
 int cli_fail(const cli_command *cmd, int status, const char *fmt, ...)
 {
     va_list ap;
@@ -28,10 +106,14 @@ void cli_print_help(const cli_command *cmd, FILE *out)
     if (cmd->description && cmd->description[0])
         fprintf(out, "\n%s\n", cmd->description);
     fprintf(out, "\nOptions:\n");
-    for (size_t k = 0; k <= cmd->noptions; k++) {
-        const cli_option *o = k < cmd->noptions ? &cmd->options[k]
-                                                : &(cli_option){"help", 'h', NULL,
+    size_t nin = cmd->reads_inputs ? NINPUT : 0;
+    for (size_t k = 0; k <= cmd->noptions + nin; k++) {
+        const cli_option *o = k < cmd->noptions          ? &cmd->options[k]
+                              : k < cmd->noptions + nin ? &input_options[k - cmd->noptions]
+                                                        : &(cli_option){"help", 'h', NULL,
                                                                 "print this help and exit"};
+        if (k == cmd->noptions && nin)
+            fprintf(out, "\nInput options:\n");
         char left[64];
         int w = o->short_name ? snprintf(left, sizeof left, "-%c, --%s", o->short_name, o->name)
                               : snprintf(left, sizeof left, "    --%s", o->name);
@@ -68,8 +150,10 @@ void cli_print_man(const cli_command *cmd, const char *version, FILE *out)
     fprintf(out, "\n.SH DESCRIPTION\n");
     roff_text(out, cmd->description);
     fprintf(out, "\n.SH OPTIONS\n");
-    for (size_t k = 0; k < cmd->noptions; k++) {
-        const cli_option *o = &cmd->options[k];
+    size_t nin = cmd->reads_inputs ? NINPUT : 0;
+    for (size_t k = 0; k < cmd->noptions + nin; k++) {
+        const cli_option *o = k < cmd->noptions ? &cmd->options[k]
+                                                : &input_options[k - cmd->noptions];
         fprintf(out, ".TP\n");
         if (o->short_name)
             fprintf(out, "\\fB\\-%c\\fR, ", o->short_name);
@@ -91,16 +175,18 @@ void cli_print_man(const cli_command *cmd, const char *version, FILE *out)
 }
 
 int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler, void *ctx,
-              int *first)
+              cli_inputs *inputs, int *first)
 {
-    struct option longopts[MAX_OPTIONS + 2];
-    char shortopts[3 * MAX_OPTIONS + 8];
-    size_t ns = 0;
+    struct option longopts[MAX_OPTIONS + NINPUT + 2];
+    char shortopts[3 * (MAX_OPTIONS + NINPUT) + 8];
+    size_t ns = 0, nin = inputs ? NINPUT : 0;
     if (cmd->noptions > MAX_OPTIONS)
         return cli_fail(cmd, 1, "too many options declared");
-    shortopts[ns++] = ':';  /* report missing arguments distinctly */
-    for (size_t k = 0; k < cmd->noptions; k++) {
-        const cli_option *o = &cmd->options[k];
+    shortopts[ns++] = ':'; /* report missing arguments distinctly */
+    size_t nall = cmd->noptions + nin;
+    for (size_t k = 0; k < nall; k++) {
+        const cli_option *o = k < cmd->noptions ? &cmd->options[k]
+                                                : &input_options[k - cmd->noptions];
         longopts[k] = (struct option){o->name, o->arg ? required_argument : no_argument, NULL,
                                       256 + (int)k};
         if (o->short_name) {
@@ -109,16 +195,15 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler
                 shortopts[ns++] = ':';
         }
     }
-    longopts[cmd->noptions] = (struct option){"help", no_argument, NULL, 'h'};
-    longopts[cmd->noptions + 1] = (struct option){NULL, 0, NULL, 0};
+    longopts[nall] = (struct option){"help", no_argument, NULL, 'h'};
+    longopts[nall + 1] = (struct option){NULL, 0, NULL, 0};
     shortopts[ns++] = 'h';
     shortopts[ns] = '\0';
 
     optind = 1;
     opterr = 0;
     for (;;) {
-        int longindex = -1;
-        int c = getopt_long(argc, argv, shortopts, longopts, &longindex);
+        int c = getopt_long(argc, argv, shortopts, longopts, NULL);
         if (c == -1)
             break;
         if (c == 'h') {
@@ -130,16 +215,21 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler
                             argv[optind - 1], cmd->name);
         if (c == ':')
             return cli_fail(cmd, 1, "option '%s' needs an argument", argv[optind - 1]);
-        size_t opt = cmd->noptions;
+        size_t opt = nall;
         if (c >= 256)
             opt = (size_t)(c - 256);
         else
-            for (size_t k = 0; k < cmd->noptions; k++)
-                if (cmd->options[k].short_name == c)
+            for (size_t k = 0; k < nall; k++) {
+                const cli_option *o = k < cmd->noptions ? &cmd->options[k]
+                                                        : &input_options[k - cmd->noptions];
+                if (o->short_name == c)
                     opt = k;
-        if (opt >= cmd->noptions)
+            }
+        if (opt >= nall)
             return cli_fail(cmd, 1, "unknown option (see mimas %s --help)", cmd->name);
-        int rc = handler ? handler(ctx, opt, optarg) : 0;
+        int rc = opt >= cmd->noptions ? input_option(cmd, inputs, opt - cmd->noptions, optarg)
+                 : handler            ? handler(ctx, opt, optarg)
+                                      : 0;
         if (rc)
             return rc;
     }

@@ -6,12 +6,23 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "reader.h"
+
 typedef struct cli_option {
     const char *name;    /* long name without "--" */
     char short_name;     /* 0 if none */
     const char *arg;     /* argument placeholder, NULL for a flag */
     const char *help;
 } cli_option;
+
+/* The input options every command that reads data accepts (--format,
+ * --contacts, --density, ...), collected into reader options. */
+typedef struct cli_inputs {
+    mimas_reader_options opt;
+    const char **contacts, **walls;   /* point into argv */
+    int quiet;
+} cli_inputs;
+void cli_inputs_free(cli_inputs *in);
 
 typedef struct cli_command {
     const char *name;
@@ -20,6 +31,7 @@ typedef struct cli_command {
     const char *description;  /* paragraph(s) for --help and the man page */
     const cli_option *options;
     size_t noptions;
+    int reads_inputs;         /* also takes the input options (cli_inputs) */
     int (*run)(const struct cli_command *cmd, int argc, char **argv);
 } cli_command;
 
@@ -32,7 +44,11 @@ typedef int (*cli_handler)(void *ctx, size_t opt, const char *arg);
  * "mimas NAME: ..." and returns 1.  On success returns 0 and sets *first to
  * the index of the first positional argument. */
 int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler, void *ctx,
-              int *first);
+              cli_inputs *inputs, int *first);
+/* Opens the positional arguments argv[first..argc-1] as one input; prints
+ * the error and returns the exit status on failure. */
+int cli_open_inputs(const cli_command *cmd, cli_inputs *in, int argc, char **argv, int first,
+                    mimas_reader **r);
 
 void cli_print_help(const cli_command *cmd, FILE *out);
 /* The command's man page (roff), from the same declaration as --help. */

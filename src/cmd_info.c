@@ -1,19 +1,26 @@
-/* mimas info: what a data file holds. */
+/* mimas info: what a data set holds. */
 #include <config.h>
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "commands.h"
 #include "native.h"
-
-static const cli_option options[] = {
-    {"quiet", 'q', NULL, "accepted for uniformity; info prints no progress"},
-};
+#include "reader.h"
 
 typedef struct range {
     size_t lo, hi;
 } range;
+
+typedef struct summary {
+    size_t frames;
+    mimas_frame_meta first, last;
+    range np, nc, nw;
+    int box_changes;
+    int has_contacts, has_walls;
+    char quantities[3][1024];  /* particles, contacts, wall contacts */
+} summary;
 
 static void widen(range *r, size_t v, int first)
 {
@@ -23,18 +30,41 @@ static void widen(range *r, size_t v, int first)
         r->hi = v;
 }
 
-static void print_quantities(const char *label, const void *tab, const mimas_table_desc *d)
+static void add_meta(summary *s, const mimas_frame_meta *m)
 {
-    printf("%-21s", label);
+    int first = s->frames == 0;
+    widen(&s->np, m->n_particles, first);
+    widen(&s->nc, m->n_contacts, first);
+    widen(&s->nw, m->n_walls, first);
+    if (first)
+        s->first = *m;
+    else if (memcmp(&m->box, &s->first.box, sizeof m->box) != 0)
+        s->box_changes = 1;
+    s->last = *m;
+    s->frames++;
+}
+
+static void quantities(char *buf, size_t len, const void *tab, const mimas_table_desc *d)
+{
+    size_t at = 0;
+    buf[0] = '\0';
     unsigned present = mimas_table_present(tab, d);
-    for (size_t c = 0; c < d->ncolumns; c++)
+    for (size_t c = 0; c < d->ncolumns && at < len; c++)
         if (present & d->columns[c].bit)
-            printf(" %s", d->columns[c].name);
+            at += (size_t)snprintf(buf + at, len - at, " %s", d->columns[c].name);
     const size_t n_extra = *(const size_t *)((const char *)tab + d->off_n_extra);
     const mimas_extra *extra = *(mimas_extra *const *)((const char *)tab + d->off_extra);
-    for (size_t e = 0; e < n_extra; e++)
-        printf(" %s[%d]", extra[e].name, extra[e].ncomp);
-    printf("\n");
+    for (size_t e = 0; e < n_extra && at < len; e++)
+        at += (size_t)snprintf(buf + at, len - at, " %s[%d]", extra[e].name, extra[e].ncomp);
+}
+
+static void note_quantities(summary *s, const mimas_frame *f)
+{
+    quantities(s->quantities[0], sizeof s->quantities[0], &f->particles, &mimas_particles_desc);
+    quantities(s->quantities[1], sizeof s->quantities[1], &f->contacts, &mimas_contacts_desc);
+    quantities(s->quantities[2], sizeof s->quantities[2], &f->walls, &mimas_walls_desc);
+    s->has_contacts = f->has_contacts;
+    s->has_walls = f->has_walls;
 }
 
 static void print_box(const char *label, const mimas_box *b)
@@ -54,97 +84,154 @@ static void print_box(const char *label, const mimas_box *b)
     printf("%s\n", any ? "" : " none");
 }
 
-static int info_file(const cli_command *cmd, const char *path)
+static void print_counts(const char *label, int present, range r)
 {
-    mimas_error err;
+    if (present)
+        printf("%-21s %zu .. %zu per frame\n", label, r.lo, r.hi);
+    else
+        printf("%-21s none\n", label);
+}
+
+static void print_summary(const summary *s, const char *format, size_t skipped)
+{
+    printf("%-21s %s\n", "format:", format);
+    printf("%-21s %zu\n", "frames:", s->frames);
+    if (skipped)
+        printf("%-21s %zu (their contact data were missing)\n", "frames skipped:", skipped);
+    if (s->frames == 0)
+        return;
+    if (isnan(s->first.time))
+        printf("%-21s unknown (no ITEM: TIME; give --timestep) (steps %lld .. %lld)\n", "time:",
+               (long long)s->first.step, (long long)s->last.step);
+    else
+        printf("%-21s %.9g .. %.9g s (steps %lld .. %lld)\n", "time:", s->first.time,
+               s->last.time, (long long)s->first.step, (long long)s->last.step);
+    print_counts("particles:", 1, s->np);
+    print_counts("contacts:", s->has_contacts, s->nc);
+    print_counts("wall contacts:", s->has_walls, s->nw);
+    print_box(s->box_changes ? "box (first frame):" : "box:", &s->first.box);
+    if (s->box_changes)
+        print_box("box (last frame):", &s->last.box);
+    printf("%-21s%s\n", "particle quantities:", s->quantities[0]);
+    if (s->has_contacts)
+        printf("%-21s%s\n", "contact quantities:", s->quantities[1]);
+    if (s->has_walls)
+        printf("%-21s%s\n", "wall quantities:", s->quantities[2]);
+}
+
+/* One native file: counts from the per-frame index, no frame data but the first. */
+static int native_summary(const char *path, summary *s, char *format, size_t len,
+                          mimas_error *err)
+{
     mimas_native *r;
-    int rc = mimas_native_open(&r, path, &err);
+    int rc = mimas_native_open(&r, path, err);
     if (rc)
-        return cli_fail(cmd, mimas_exit_status(rc), "%s", err.msg);
+        return rc;
+    snprintf(format, len, "mimas native %d (H5MD 1.1), written by %s",
+             MIMAS_NATIVE_VERSION_MAJOR, mimas_native_creator(r));
     size_t nf = mimas_native_frames(r);
-    range np = {0, 0}, nc = {0, 0}, nw = {0, 0};
-    mimas_frame_meta first, last, m;
-    memset(&first, 0, sizeof first);
-    memset(&last, 0, sizeof last);
-    int box_changes = 0;
+    mimas_frame_meta m;
     for (size_t k = 0; !rc && k < nf; k++) {
-        rc = mimas_native_frame_meta(r, k, &m, &err);
-        if (rc)
-            break;
-        widen(&np, m.n_particles, k == 0);
-        widen(&nc, m.n_contacts, k == 0);
-        widen(&nw, m.n_walls, k == 0);
-        if (k == 0)
-            first = m;
-        else if (memcmp(&m.box, &first.box, sizeof m.box) != 0)
-            box_changes = 1;
-        last = m;
+        rc = mimas_native_frame_meta(r, k, &m, err);
+        if (!rc)
+            add_meta(s, &m);
     }
     mimas_frame f;
     mimas_frame_init(&f);
     if (!rc && nf > 0)
-        rc = mimas_native_read(r, 0, &f, &err);
-    if (rc) {
-        mimas_frame_free(&f);
-        mimas_native_close(r);
-        return cli_fail(cmd, mimas_exit_status(rc), "%s", err.msg);
-    }
-    printf("%-21s %s\n", "file:", path);
-    printf("%-21s mimas native %d (H5MD 1.1), written by %s\n", "format:",
-           MIMAS_NATIVE_VERSION_MAJOR, mimas_native_creator(r));
-    printf("%-21s %zu\n", "frames:", nf);
-    if (nf > 0) {
-        printf("%-21s %.9g .. %.9g s (steps %lld .. %lld)\n", "time:", first.time, last.time,
-               (long long)first.step, (long long)last.step);
-        printf("%-21s %zu .. %zu per frame\n", "particles:", np.lo, np.hi);
-        if (mimas_native_has_contacts(r))
-            printf("%-21s %zu .. %zu per frame\n", "contacts:", nc.lo, nc.hi);
-        else
-            printf("%-21s none\n", "contacts:");
-        if (mimas_native_has_walls(r))
-            printf("%-21s %zu .. %zu per frame\n", "wall contacts:", nw.lo, nw.hi);
-        else
-            printf("%-21s none\n", "wall contacts:");
-        print_box(box_changes ? "box (first frame):" : "box:", &first.box);
-        if (box_changes)
-            print_box("box (last frame):", &last.box);
-        print_quantities("particle quantities:", &f.particles, &mimas_particles_desc);
-        if (mimas_native_has_contacts(r))
-            print_quantities("contact quantities:", &f.contacts, &mimas_contacts_desc);
-        if (mimas_native_has_walls(r))
-            print_quantities("wall quantities:", &f.walls, &mimas_walls_desc);
-    }
+        rc = mimas_native_read(r, 0, &f, err);
+    if (!rc && nf > 0)
+        note_quantities(s, &f);
+    s->has_contacts = mimas_native_has_contacts(r);
+    s->has_walls = mimas_native_has_walls(r);
     mimas_frame_free(&f);
     mimas_native_close(r);
-    return 0;
+    return rc;
+}
+
+/* Any input: every frame streamed once. */
+static int stream_summary(mimas_reader *r, summary *s, mimas_error *err)
+{
+    mimas_frame f;
+    mimas_frame_init(&f);
+    int rc;
+    while ((rc = mimas_reader_next(r, &f, err)) == MIMAS_OK) {
+        mimas_frame_meta m = {f.step, f.time, f.box, f.particles.n, f.contacts.n, f.walls.n};
+        if (s->frames == 0)
+            note_quantities(s, &f);
+        add_meta(s, &m);
+    }
+    mimas_frame_free(&f);
+    return rc == MIMAS_END ? MIMAS_OK : rc;
+}
+
+static int is_single_native(const cli_inputs *in, int argc, char **argv, int first)
+{
+    if (argc - first != 1 || in->opt.ncontacts || in->opt.nwalls)
+        return 0;
+    if (in->opt.format)
+        return !strcmp(in->opt.format, "native");
+    FILE *fp = fopen(argv[first], "rb");
+    char sig[8] = {0};
+    size_t n = fp ? fread(sig, 1, 8, fp) : 0;
+    if (fp)
+        fclose(fp);
+    return n == 8 && !memcmp(sig, "\x89HDF\r\n\x1a\n", 8);
 }
 
 static int run(const cli_command *cmd, int argc, char **argv)
 {
     int first;
-    int rc = cli_parse(cmd, argc, argv, NULL, NULL, &first);
-    if (rc)
+    cli_inputs in = {0};
+    int rc = cli_parse(cmd, argc, argv, NULL, NULL, &in, &first);
+    if (rc) {
+        cli_inputs_free(&in);
         return rc < 0 ? 0 : rc;
-    if (first >= argc)
-        return cli_fail(cmd, 1, "no input file (see mimas info --help)");
-    for (int k = first; k < argc; k++) {
-        if (k > first)
-            printf("\n");
-        rc = info_file(cmd, argv[k]);
-        if (rc)
-            return rc;
     }
+    if (first >= argc) {
+        cli_inputs_free(&in);
+        return cli_fail(cmd, 1, "no input file (see mimas info --help)");
+    }
+    summary s;
+    memset(&s, 0, sizeof s);
+    char format[160];
+    size_t skipped = 0;
+    mimas_error err;
+    if (is_single_native(&in, argc, argv, first)) {
+        rc = native_summary(argv[first], &s, format, sizeof format, &err);
+    } else {
+        mimas_reader *r;
+        rc = cli_open_inputs(cmd, &in, argc, argv, first, &r);
+        if (rc) {
+            cli_inputs_free(&in);
+            return rc;
+        }
+        snprintf(format, sizeof format, "%s", mimas_reader_format(r));
+        rc = stream_summary(r, &s, &err);
+        skipped = mimas_reader_skipped(r);
+        mimas_reader_close(r);
+    }
+    cli_inputs_free(&in);
+    if (rc)
+        return cli_fail(cmd, mimas_exit_status(rc), "%s", err.msg);
+    if (argc - first == 1)
+        printf("%-21s %s\n", "file:", argv[first]);
+    else
+        printf("%-21s %s ... (%d files)\n", "files:", argv[first], argc - first);
+    print_summary(&s, format, skipped);
     return 0;
 }
 
 const cli_command cmd_info = {
     "info",
-    "describe a data file: frames, times, counts, box and quantities",
-    "[options] FILE...",
+    "describe a data set: frames, times, counts, box and quantities",
+    "[options] INPUT...",
     "Prints the format, the number of frames, the time range, the particles,\n"
     "contacts and wall contacts per frame (min .. max), the box and which\n"
-    "quantities the file carries.",
-    options,
-    sizeof options / sizeof options[0],
+    "quantities the data carry.  Works on every input mimas reads; several\n"
+    "inputs (a dump series) are described as one data set.",
+    NULL,
+    0,
+    1,
     run,
 };

@@ -135,6 +135,10 @@ int mimas_box_is_triclinic(const mimas_box *b);
 double mimas_box_volume(const mimas_box *b);
 /* Rows are the edge vectors a, b, c. */
 void mimas_box_edges(const mimas_box *b, double e[3][3]);
+/* Replaces d by its minimum image along the periodic directions (PHYSICS 1),
+ * for orthogonal and triclinic boxes (LAMMPS' convention: the nearest image
+ * in fractional coordinates). */
+void mimas_box_min_image(const mimas_box *b, double d[3]);
 
 typedef struct mimas_frame {
     int64_t step;

@@ -53,6 +53,7 @@ static int build_sorted(mimas_id_index *x, const int64_t *ids, size_t n, mimas_e
     for (size_t k = 0; k < n; k++) {
         if (k > 0 && p[k].id == p[k - 1].id) {
             int64_t dup = p[k].id;
+            x->duplicate = dup;
             free(p);
             return mimas_error_set(err, MIMAS_EDATA, "duplicate particle id %lld",
                                    (long long)dup);
@@ -93,9 +94,11 @@ int mimas_id_index_build(mimas_id_index *x, const int64_t *ids, size_t n, mimas_
     memset(x->dense, 0xff, x->span * sizeof *x->dense);
     for (size_t k = 0; k < n; k++) {
         size_t *slot = &x->dense[ids[k] - lo];
-        if (*slot != SIZE_MAX)
+        if (*slot != SIZE_MAX) {
+            x->duplicate = ids[k];
             return mimas_error_set(err, MIMAS_EDATA, "duplicate particle id %lld",
                                    (long long)ids[k]);
+        }
         *slot = k;
     }
     return MIMAS_OK;

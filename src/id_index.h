@@ -20,6 +20,7 @@ typedef struct mimas_id_index {
     int64_t *ids;       /* sorted mode: ids ascending */
     size_t *idx;        /* sorted mode: their indices */
     size_t cap_dense, cap_sorted;
+    int64_t duplicate;  /* after a build failed on a repeated id: that id */
 } mimas_id_index;
 
 void mimas_id_index_init(mimas_id_index *x);

@@ -9,6 +9,7 @@
 
 static const cli_command *const commands[] = {
     &cmd_info,
+    &cmd_convert,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 

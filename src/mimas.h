@@ -7,6 +7,7 @@
 #include "frame.h"
 #include "id_index.h"
 #include "native.h"
+#include "reader.h"
 #include "voro_cells.h"
 
 #ifdef __cplusplus

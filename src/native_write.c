@@ -151,13 +151,18 @@ size_t mimas_writer_frames(const mimas_writer *w)
 
 /* ---- layout creation (first frame) ---- */
 
+/* Groups remember the order their members were created in, so extra
+ * columns read back in the order they were written. */
 static hid_t make_group(hid_t file, const char *path)
 {
     if (H5Lexists(file, path, H5P_DEFAULT) > 0)
         return H5Gopen2(file, path, H5P_DEFAULT);
     hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
     H5Pset_create_intermediate_group(lcpl, 1);
-    hid_t g = H5Gcreate2(file, path, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
+    H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
+    hid_t g = H5Gcreate2(file, path, lcpl, gcpl, H5P_DEFAULT);
+    H5Pclose(gcpl);
     H5Pclose(lcpl);
     return g;
 }
@@ -190,6 +195,9 @@ static int create_particles(mimas_writer *w, const mimas_frame *f, mimas_error *
 {
     const mimas_particles *p = &f->particles;
     hsize_t one = FRAME_CHUNK;
+    hid_t gp = make_group(w->file, NATIVE_PARTICLES); /* with creation order */
+    if (gp >= 0)
+        H5Gclose(gp);
     hid_t g = make_group(w->file, NATIVE_CLOCK);
     if (g < 0)
         return h5fail(w, err, "create " NATIVE_CLOCK);

@@ -1,0 +1,303 @@
+#include <config.h>
+
+#include "lammps_atoms.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "id_index.h"
+#include "numparse.h"
+
+enum {
+    A_SKIP, A_ID, A_TYPE, A_X, A_XU, A_XS, A_XSU, A_IMAGE, A_V, A_F, A_OMEGA, A_RADIUS,
+    A_DIAMETER, A_MASS, A_EXTRA
+};
+
+/* Named per-atom columns LAMMPS and LIGGGHTS write; anything else is kept as
+ * an extra column. */
+static const struct {
+    const char *name;
+    int target, comp;
+} known[] = {
+    {"id", A_ID, 0},         {"type", A_TYPE, 0},       {"x", A_X, 0},
+    {"y", A_X, 1},           {"z", A_X, 2},             {"xu", A_XU, 0},
+    {"yu", A_XU, 1},         {"zu", A_XU, 2},           {"xs", A_XS, 0},
+    {"ys", A_XS, 1},         {"zs", A_XS, 2},           {"xsu", A_XSU, 0},
+    {"ysu", A_XSU, 1},       {"zsu", A_XSU, 2},         {"ix", A_IMAGE, 0},
+    {"iy", A_IMAGE, 1},      {"iz", A_IMAGE, 2},        {"vx", A_V, 0},
+    {"vy", A_V, 1},          {"vz", A_V, 2},            {"fx", A_F, 0},
+    {"fy", A_F, 1},          {"fz", A_F, 2},            {"omegax", A_OMEGA, 0},
+    {"omegay", A_OMEGA, 1},  {"omegaz", A_OMEGA, 2},    {"radius", A_RADIUS, 0},
+    {"diameter", A_DIAMETER, 0}, {"mass", A_MASS, 0},
+};
+
+void atom_layout_free(atom_layout *l)
+{
+    free(l->columns);
+    free(l->cols);
+    free(l->extra_name);
+    free(l->extra_ncomp);
+    memset(l, 0, sizeof *l);
+}
+
+/* "c_stress[3]" -> base "c_stress", index 3; other names: index 0. */
+static int split_index(const char *name, char *base, size_t cap)
+{
+    const char *br = strchr(name, '[');
+    size_t n = br ? (size_t)(br - name) : strlen(name);
+    int idx = 0;
+    if (br) {
+        char *end;
+        long v = strtol(br + 1, &end, 10);
+        if (end != br + 1 && end[0] == ']' && end[1] == '\0' && v > 0 && v < 1000)
+            idx = (int)v;
+        else
+            n = strlen(name);
+    }
+    if (n >= cap)
+        n = cap - 1;
+    memcpy(base, name, n);
+    base[n] = '\0';
+    return idx;
+}
+
+static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
+{
+    atom_layout_free(l);
+    l->columns = strdup(s->h.columns);
+    size_t cap = 1 + strlen(s->h.columns) / 2;
+    l->cols = calloc(cap, sizeof *l->cols);
+    l->extra_name = calloc(cap, sizeof *l->extra_name);
+    l->extra_ncomp = calloc(cap, sizeof *l->extra_ncomp);
+    if (!l->columns || !l->cols || !l->extra_name || !l->extra_ncomp)
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    int have[A_EXTRA][3];
+    memset(have, 0, sizeof have);
+    int prev_idx = 0;
+    char *save = NULL, *text = strdup(s->h.columns);
+    if (!text)
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    for (char *tok = strtok_r(text, " \t", &save); tok; tok = strtok_r(NULL, " \t", &save)) {
+        atom_col *c = &l->cols[l->ncols++];
+        c->target = A_EXTRA;
+        for (size_t k = 0; k < sizeof known / sizeof known[0]; k++)
+            if (!strcmp(tok, known[k].name)) {
+                c->target = known[k].target;
+                c->comp = known[k].comp;
+            }
+        if (c->target != A_EXTRA) {
+            if (have[c->target][c->comp]++) {
+                free(text);
+                return text_error(&s->in, err, "column '%s' appears twice", tok);
+            }
+            prev_idx = 0;
+            continue;
+        }
+        /* extras: consecutive X[1], X[2], ... form one column of ncomp values */
+        char base[64];
+        int idx = split_index(tok, base, sizeof base);
+        if (idx > 1 && l->nextra && idx == prev_idx + 1 &&
+            !strcmp(l->extra_name[l->nextra - 1], base)) {
+            c->extra = l->nextra - 1;
+            c->comp = l->extra_ncomp[c->extra]++;
+        } else {
+            for (size_t e = 0; e < l->nextra; e++)
+                if (!strcmp(l->extra_name[e], idx ? base : tok)) {
+                    free(text);
+                    return text_error(&s->in, err, "column '%s' appears twice", tok);
+                }
+            c->extra = l->nextra++;
+            c->comp = 0;
+            snprintf(l->extra_name[c->extra], 64, "%s", idx ? base : tok);
+            l->extra_ncomp[c->extra] = 1;
+        }
+        prev_idx = idx;
+    }
+    free(text);
+    if (!have[A_ID][0])
+        return text_error(&s->in, err, "the ATOMS columns have no id");
+    /* positions: x y z, else unwrapped, else scaled, else scaled unwrapped */
+    static const int order[4] = {A_X, A_XU, A_XS, A_XSU};
+    l->pos_target = A_SKIP;
+    for (int k = 0; k < 4 && l->pos_target == A_SKIP; k++)
+        if (have[order[k]][0] && have[order[k]][1] && have[order[k]][2])
+            l->pos_target = order[k];
+    if (l->pos_target == A_SKIP)
+        return text_error(&s->in, err, "the ATOMS columns have no complete set of positions "
+                                       "(x y z, xu yu zu, xs ys zs or xsu ysu zsu)");
+    l->bits = MIMAS_P_ID | MIMAS_P_POS;
+    if (have[A_TYPE][0])
+        l->bits |= MIMAS_P_TYPE;
+    if (have[A_RADIUS][0] || have[A_DIAMETER][0])
+        l->bits |= MIMAS_P_RADIUS;
+    if (have[A_MASS][0])
+        l->bits |= MIMAS_P_MASS;
+    static const struct {
+        int target;
+        unsigned bit;
+    } vec[4] = {{A_V, MIMAS_P_VEL}, {A_F, MIMAS_P_FORCE}, {A_OMEGA, MIMAS_P_OMEGA},
+                {A_IMAGE, MIMAS_P_IMAGE}};
+    for (int k = 0; k < 4; k++) {
+        int n = have[vec[k].target][0] + have[vec[k].target][1] + have[vec[k].target][2];
+        if (n == 3)
+            l->bits |= vec[k].bit;
+        else if (n > 0)
+            return text_error(&s->in, err, "the ATOMS columns have an incomplete vector "
+                                           "(all three components are needed)");
+    }
+    /* position columns not used (e.g. xu beside x) are skipped */
+    for (size_t c = 0; c < l->ncols; c++) {
+        int t = l->cols[c].target;
+        if ((t == A_X || t == A_XU || t == A_XS || t == A_XSU) && t != l->pos_target)
+            l->cols[c].target = A_SKIP;
+        if (t == A_DIAMETER && have[A_RADIUS][0])
+            l->cols[c].target = A_SKIP;
+    }
+    return MIMAS_OK;
+}
+
+static int setup_frame(atom_layout *l, mimas_frame *f, size_t n, int want_mass,
+                       mimas_error *err)
+{
+    mimas_particles *p = &f->particles;
+    unsigned bits = l->bits | (want_mass ? MIMAS_P_MASS : 0);
+    mimas_table_keep_only(p, &mimas_particles_desc, bits);
+    int rc = mimas_table_set_present(p, &mimas_particles_desc, bits, err);
+    /* extras: rebuild unless they are already these */
+    int same = p->n_extra == l->nextra;
+    for (size_t e = 0; same && e < l->nextra; e++)
+        same = !strcmp(p->extra[e].name, l->extra_name[e]) &&
+               p->extra[e].ncomp == l->extra_ncomp[e];
+    if (!same)
+        mimas_table_drop_extras(p, &mimas_particles_desc);
+    for (size_t e = 0; !rc && e < l->nextra; e++)
+        rc = mimas_table_add_extra(p, &mimas_particles_desc, l->extra_name[e],
+                                   l->extra_ncomp[e], NULL, err);
+    if (!rc)
+        rc = mimas_table_resize(p, &mimas_particles_desc, n, err);
+    return rc;
+}
+
+static int parse_row(dump_series *s, const atom_layout *l, mimas_particles *p, size_t k,
+                     char *row, mimas_error *err)
+{
+    char *q = row;
+    for (size_t c = 0; c < l->ncols; c++) {
+        const atom_col *col = &l->cols[c];
+        int64_t iv = 0;
+        double dv = 0;
+        int bad;
+        switch (col->target) {
+        case A_ID:
+        case A_TYPE:
+        case A_IMAGE:
+            bad = parse_int64(&q, &iv);
+            break;
+        case A_SKIP:
+            bad = skip_token(&q);
+            break;
+        default:
+            bad = parse_double(&q, &dv);
+        }
+        if (bad == -1)
+            return text_error(&s->in, err, "row has %zu values, the ATOMS header names %zu", c,
+                              l->ncols);
+        if (bad)
+            return text_error(&s->in, err, "value %zu is not %s", c + 1,
+                              col->target == A_ID || col->target == A_TYPE ||
+                                      col->target == A_IMAGE
+                                  ? "an integer"
+                                  : "a finite number");
+        switch (col->target) {
+        case A_ID: p->id[k] = iv; break;
+        case A_TYPE:
+        case A_IMAGE:
+            if (iv < INT32_MIN || iv > INT32_MAX)
+                return text_error(&s->in, err, "value %zu is out of range", c + 1);
+            if (col->target == A_TYPE)
+                p->type[k] = (int32_t)iv;
+            else
+                p->image[k][col->comp] = (int32_t)iv;
+            break;
+        case A_X:
+        case A_XU:
+        case A_XS:
+        case A_XSU: p->pos[k][col->comp] = dv; break;
+        case A_V: p->vel[k][col->comp] = dv; break;
+        case A_F: p->force[k][col->comp] = dv; break;
+        case A_OMEGA: p->omega[k][col->comp] = dv; break;
+        case A_RADIUS: p->radius[k] = dv; break;
+        case A_DIAMETER: p->radius[k] = 0.5 * dv; break;
+        case A_MASS: p->mass[k] = dv; break;
+        case A_EXTRA:
+            p->extra[col->extra].data[k * (size_t)p->extra[col->extra].ncomp + (size_t)col->comp] =
+                dv;
+            break;
+        default: break;
+        }
+    }
+    if (skip_token(&q) == 0)
+        return text_error(&s->in, err, "row has more values than the %zu the ATOMS header names",
+                          l->ncols);
+    return MIMAS_OK;
+}
+
+int atoms_read(dump_series *s, atom_layout *l, mimas_frame *f, double density, double dt,
+               mimas_id_index *index, mimas_error *err)
+{
+    int rc = MIMAS_OK;
+    if (!l->columns || strcmp(l->columns, s->h.columns) != 0)
+        rc = build_layout(s, l, err);
+    if (rc)
+        return rc;
+    size_t n = s->h.count;
+    int want_mass = !(l->bits & MIMAS_P_MASS) && density > 0 && (l->bits & MIMAS_P_RADIUS);
+    rc = setup_frame(l, f, n, want_mass, err);
+    if (rc)
+        return rc;
+    mimas_particles *p = &f->particles;
+    long first_line = s->in.line + 1;
+    for (size_t k = 0; k < n; k++) {
+        char *row = dump_series_row(s, k, &rc, err);
+        if (!row)
+            return rc;
+        rc = parse_row(s, l, p, k, row, err);
+        if (rc)
+            return rc;
+    }
+    f->step = s->h.step;
+    f->time = s->h.has_time ? s->h.time : (dt > 0 ? (double)s->h.step * dt : NAN);
+    f->box = s->h.box;
+    const mimas_box *b = &f->box;
+    if (l->pos_target == A_XS || l->pos_target == A_XSU) {
+        /* scaled (fractional) coordinates: x = lo + xs a + ys b + zs c */
+        double L[3] = {b->hi[0] - b->lo[0], b->hi[1] - b->lo[1], b->hi[2] - b->lo[2]};
+        for (size_t k = 0; k < n; k++) {
+            double *x = p->pos[k], s0 = x[0], s1 = x[1], s2 = x[2];
+            x[0] = b->lo[0] + s0 * L[0] + s1 * b->xy + s2 * b->xz;
+            x[1] = b->lo[1] + s1 * L[1] + s2 * b->yz;
+            x[2] = b->lo[2] + s2 * L[2];
+        }
+    }
+    for (size_t k = 0; k < n && (l->bits & MIMAS_P_RADIUS); k++)
+        if (!(p->radius[k] > 0))
+            return mimas_error_set(err, MIMAS_EDATA, "%s:%ld: radius %g is not positive",
+                                   s->in.path, first_line + (long)k, p->radius[k]);
+    if (want_mass)
+        for (size_t k = 0; k < n; k++)
+            p->mass[k] = density * 4.0 / 3.0 * M_PI * p->radius[k] * p->radius[k] * p->radius[k];
+    /* unique ids (rows may come in any order); the map serves the contacts */
+    rc = mimas_id_index_build(index, p->id, n, err);
+    if (rc == MIMAS_EDATA) {
+        for (size_t k = 0, seen = 0; k < n; k++)
+            if (p->id[k] == index->duplicate && seen++)
+                return mimas_error_set(err, MIMAS_EDATA, "%s:%ld: duplicate atom id %lld",
+                                       s->in.path, first_line + (long)k,
+                                       (long long)index->duplicate);
+    }
+    if (rc)
+        return rc;
+    return MIMAS_OK;
+}

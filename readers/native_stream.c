@@ -1,0 +1,80 @@
+/* The native format as a stream backend: frames of several files in order. */
+#include <config.h>
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "backend.h"
+#include "native.h"
+
+typedef struct native_stream {
+    const char *const *inputs;
+    size_t ninputs, file;
+    size_t frame;
+    mimas_native *cur;
+} native_stream;
+
+static int probe(const char *path, const char *head, size_t n)
+{
+    (void)path;
+    static const char sig[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+    return n >= 8 && memcmp(head, sig, 8) == 0;
+}
+
+static int open_stream(void **state, const char *const *inputs, size_t ninputs,
+                       const mimas_reader_options *o, mimas_error *err)
+{
+    if (o->ncontacts || o->nwalls)
+        return mimas_error_set(err, MIMAS_EUSAGE,
+                               "%s: a native file holds its own contacts; --contacts and "
+                               "--wall-contacts do not apply", inputs[0]);
+    native_stream *s = calloc(1, sizeof *s);
+    if (!s)
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    s->inputs = inputs;
+    s->ninputs = ninputs;
+    /* open every file once up front so a bad one is reported before any work */
+    for (size_t k = 0; k < ninputs; k++) {
+        mimas_native *r;
+        int rc = mimas_native_open(&r, inputs[k], err);
+        if (rc) {
+            free(s);
+            return rc;
+        }
+        if (k == 0)
+            s->cur = r;
+        else
+            mimas_native_close(r);
+    }
+    *state = s;
+    return MIMAS_OK;
+}
+
+static int next(void *state, mimas_frame *f, mimas_error *err)
+{
+    native_stream *s = state;
+    while (s->cur && s->frame >= mimas_native_frames(s->cur)) {
+        mimas_native_close(s->cur);
+        s->cur = NULL;
+        s->frame = 0;
+        if (++s->file < s->ninputs) {
+            int rc = mimas_native_open(&s->cur, s->inputs[s->file], err);
+            if (rc)
+                return rc;
+        }
+    }
+    if (!s->cur)
+        return MIMAS_END;
+    return mimas_native_read(s->cur, s->frame++, f, err);
+}
+
+static void close_stream(void *state)
+{
+    native_stream *s = state;
+    if (s)
+        mimas_native_close(s->cur);
+    free(s);
+}
+
+const reader_backend reader_native = {"native", "mimas native (HDF5, H5MD 1.1)", probe,
+                                      open_stream, next, NULL, close_stream};
