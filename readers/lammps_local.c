@@ -260,8 +260,8 @@ static int build_layout(dump_series *s, local_layout *l, mimas_error *err)
         rc = named_layout(s, l, l->keywords, err);
     else if (is_anonymous(s->h.columns))
         rc = text_error(&s->in, err, "local dump columns are anonymous (%.20s...): name the "
-                        "keywords of the compute with --%s-columns", s->h.columns,
-                        l->walls ? "wall" : "contact");
+                        "keywords of the compute with --%s-columns",
+                        s->h.columns + strspn(s->h.columns, " \t"), l->walls ? "wall" : "contact");
     else
         rc = named_layout(s, l, s->h.columns, err);
     if (rc)

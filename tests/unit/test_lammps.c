@@ -1,0 +1,304 @@
+/* LAMMPS/LIGGGHTS dump reader on real LIGGGHTS output (tests/data/liggghts):
+ * counts and values checked against the text itself (read here with zlib
+ * and strtod, independently of the reader), contacts matched to the right
+ * particles (the overlap LIGGGHTS reports equals the geometric one). */
+#include <config.h>
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <zlib.h>
+
+#include "assert_close.h"
+#include "reader.h"
+
+#define KEYS "pos,vel,id,force,force_normal,force_tangential,torque,torque_normal," \
+             "torque_tangential,history,contactArea,delta,contactPoint"
+
+static char path_buf[8][512];
+static const char *data(const char *rel)
+{
+    static int k;
+    k = (k + 1) % 8;
+    const char *top = getenv("TEST_SRCDIR");
+    snprintf(path_buf[k], sizeof path_buf[k], "%s/data/liggghts/%s", top ? top : "tests", rel);
+    return path_buf[k];
+}
+
+static mimas_reader *open_set(const char *atoms, const char *pgl, const char *wgl)
+{
+    static const char *contacts[1], *walls[1], *inputs[1];
+    mimas_reader_options o;
+    mimas_reader_options_default(&o);
+    inputs[0] = atoms;
+    if (pgl) {
+        contacts[0] = pgl;
+        o.contacts = contacts;
+        o.ncontacts = 1;
+        o.contact_columns = KEYS;
+    }
+    if (wgl) {
+        walls[0] = wgl;
+        o.walls = walls;
+        o.nwalls = 1;
+        o.wall_columns = KEYS;
+    }
+    mimas_reader *r;
+    mimas_error err;
+    if (mimas_reader_open(&r, inputs, 1, &o, &err))
+        fail_msg("%s", err.msg);
+    return r;
+}
+
+/* Row counts of every snapshot, counted from the text: the lines between an
+ * "ITEM: ATOMS"/"ITEM: ENTRIES" line and the next "ITEM:" line. */
+static size_t count_rows(const char *path, size_t *counts, size_t max)
+{
+    gzFile gz = gzopen(path, "rb");
+    assert_non_null(gz);
+    char line[8192];
+    size_t snaps = 0;
+    int in_rows = 0;
+    while (gzgets(gz, line, sizeof line)) {
+        if (!strncmp(line, "ITEM:", 5)) {
+            in_rows = !strncmp(line, "ITEM: ATOMS", 11) || !strncmp(line, "ITEM: ENTRIES", 13);
+            if (in_rows) {
+                assert_true(snaps < max);
+                counts[snaps++] = 0;
+            }
+        } else if (in_rows) {
+            counts[snaps - 1]++;
+        }
+    }
+    gzclose(gz);
+    return snaps;
+}
+
+/* The k-th data row of snapshot s, split into up to 64 numbers by strtod. */
+static int text_row(const char *path, size_t snap, size_t row, double *v)
+{
+    gzFile gz = gzopen(path, "rb");
+    char line[8192];
+    size_t s = 0, r = 0;
+    int in_rows = 0, n = -1;
+    while (gzgets(gz, line, sizeof line)) {
+        if (!strncmp(line, "ITEM:", 5)) {
+            in_rows = !strncmp(line, "ITEM: ATOMS", 11) || !strncmp(line, "ITEM: ENTRIES", 13);
+            if (in_rows)
+                s++, r = 0;
+            continue;
+        }
+        if (in_rows && s == snap + 1 && r++ == row) {
+            char *p = line, *end;
+            n = 0;
+            while (n < 64) {
+                double x = strtod(p, &end);
+                if (end == p)
+                    break;
+                v[n++] = x;
+                p = end;
+            }
+            break;
+        }
+    }
+    gzclose(gz);
+    return n;
+}
+
+static size_t find_id(const mimas_particles *p, int64_t id)
+{
+    for (size_t k = 0; k < p->n; k++)
+        if (p->id[k] == id)
+            return k;
+    fail_msg("id %lld not found", (long long)id);
+    return 0;
+}
+
+static void test_periodic_counts_and_values(void **state)
+{
+    (void)state;
+    const char *atoms = data("periodic_box/dump.periodic.atom.gz");
+    const char *pgl = data("periodic_box/dump.periodic.pgl.gz");
+    size_t natoms[32], ncont[32];
+    size_t snaps = count_rows(atoms, natoms, 32);
+    assert_int_equal(count_rows(pgl, ncont, 32), snaps);
+    mimas_reader *r = open_set(atoms, pgl, NULL);
+    mimas_frame f;
+    mimas_frame_init(&f);
+    mimas_error err;
+    size_t k = 0;
+    int rc;
+    while ((rc = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
+        assert_true(k < snaps);
+        assert_int_equal(f.particles.n, natoms[k]);
+        assert_int_equal(f.contacts.n, ncont[k]);
+        assert_true(f.box.periodic[0] && f.box.periodic[1] && f.box.periodic[2]);
+        /* the third row of the snapshot, value by value as strtod reads it:
+         * id type x y z ix iy iz vx vy vz fx fy fz wx wy wz radius mass s1..s6 */
+        double v[64];
+        assert_int_equal(text_row(atoms, k, 2, v), 25);
+        size_t i = find_id(&f.particles, (int64_t)v[0]);
+        assert_int_equal(f.particles.type[i], (int32_t)v[1]);
+        for (int d = 0; d < 3; d++) {
+            assert_true(f.particles.pos[i][d] == v[2 + d]);
+            assert_int_equal(f.particles.image[i][d], (int32_t)v[5 + d]);
+            assert_true(f.particles.vel[i][d] == v[8 + d]);
+            assert_true(f.particles.force[i][d] == v[11 + d]);
+            assert_true(f.particles.omega[i][d] == v[14 + d]);
+        }
+        assert_true(f.particles.radius[i] == v[17]);
+        assert_true(f.particles.mass[i] == v[18]);
+        assert_string_equal(f.particles.extra[0].name, "c_stress");
+        for (int c = 0; c < 6; c++)
+            assert_true(f.particles.extra[0].data[6 * i + (size_t)c] == v[19 + c]);
+        /* the first contact row: ids, force, delta, contact point */
+        if (ncont[k] > 0) {
+            assert_int_equal(text_row(pgl, k, 0, v), 41);
+            assert_int_equal(f.particles.id[f.contacts.i[0]], (int64_t)v[12]);
+            assert_int_equal(f.particles.id[f.contacts.j[0]], (int64_t)v[13]);
+            for (int d = 0; d < 3; d++) {
+                assert_true(f.contacts.force[0][d] == v[15 + d]);
+                assert_true(f.contacts.force_n[0][d] == v[18 + d]);
+                assert_true(f.contacts.force_t[0][d] == v[21 + d]);
+                assert_true(f.contacts.point[0][d] == v[38 + d]);
+            }
+            assert_true(f.contacts.overlap[0] == v[37]);
+        }
+        k++;
+    }
+    assert_int_equal(rc, MIMAS_END);
+    assert_int_equal(k, snaps);
+    mimas_frame_free(&f);
+    mimas_reader_close(r);
+}
+
+/* Every contact joins the particles its ids name: LIGGGHTS' overlap equals
+ * R_i + R_j - |x_i - x_j| (minimum image) within the 6 printed digits, and
+ * the force on i pushes i away from j. */
+static void check_geometry(const char *atoms, const char *pgl, size_t *total)
+{
+    mimas_reader *r = open_set(atoms, pgl, NULL);
+    mimas_frame f;
+    mimas_frame_init(&f);
+    mimas_error err;
+    int rc;
+    while ((rc = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
+        const mimas_particles *p = &f.particles;
+        for (size_t c = 0; c < f.contacts.n; c++) {
+            size_t i = f.contacts.i[c], j = f.contacts.j[c];
+            double d[3];
+            for (int m = 0; m < 3; m++)
+                d[m] = p->pos[i][m] - p->pos[j][m];
+            mimas_box_min_image(&f.box, d);
+            double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            assert_close(p->radius[i] + p->radius[j] - dist, f.contacts.overlap[c], 3e-7);
+            double push = d[0] * f.contacts.force[c][0] + d[1] * f.contacts.force[c][1] +
+                          d[2] * f.contacts.force[c][2];
+            assert_true(push > 0);
+            (*total)++;
+        }
+    }
+    if (rc != MIMAS_END)
+        fail_msg("%s", err.msg);
+    mimas_frame_free(&f);
+    mimas_reader_close(r);
+}
+
+static void test_contacts_match_particles_periodic(void **state)
+{
+    (void)state;
+    size_t n = 0;
+    check_geometry(data("periodic_box/dump.periodic.atom.gz"),
+                   data("periodic_box/dump.periodic.pgl.gz"), &n);
+    assert_true(n > 4000);
+}
+
+static void test_contacts_match_particles_triclinic(void **state)
+{
+    (void)state;
+    size_t n = 0;
+    /* 107 of these contacts cross the tilted faces */
+    check_geometry(data("triclinic/dump.triclinic_complete.atom"),
+                   data("triclinic/dump.triclinic_complete.pgl"), &n);
+    size_t counts[4];
+    assert_int_equal(count_rows(data("triclinic/dump.triclinic_complete.pgl"), counts, 4), 1);
+    assert_int_equal(n, counts[0]);
+}
+
+static void test_triclinic_box_from_bounds(void **state)
+{
+    (void)state;
+    /* LAMMPS dump docs: xlo = xlo_bound - min(0, xy, xz, xy + xz), xhi = xhi_bound -
+     * max(...), ylo = ylo_bound - min(0, yz), yhi = yhi_bound - max(0, yz) */
+    mimas_reader *r = open_set(data("triclinic/dump.triclinic_complete.atom"), NULL, NULL);
+    mimas_frame f;
+    mimas_frame_init(&f);
+    mimas_error err;
+    assert_int_equal(mimas_reader_next(r, &f, &err), MIMAS_OK);
+    /* the header: -0.00131278 0.0243726 0.00219534 / 0 0.0235213 -0.00153673 /
+     * -0.000223957 0.0226252 0.00112006 */
+    assert_true(f.box.xy == 0.00219534 && f.box.xz == -0.00153673 && f.box.yz == 0.00112006);
+    assert_close(f.box.lo[0], -0.00131278 + 0.00153673, 1e-18);
+    assert_close(f.box.hi[0], 0.0243726 - 0.00219534, 1e-18);
+    assert_close(f.box.lo[1], 0.0, 0.0);
+    assert_close(f.box.hi[1], 0.0235213 - 0.00112006, 1e-18);
+    assert_true(f.box.lo[2] == -0.000223957 && f.box.hi[2] == 0.0226252);
+    mimas_frame_free(&f);
+    mimas_reader_close(r);
+}
+
+/* Wall contacts of the mesh hopper: the contact point is on the wall at
+ * distance R - delta from the particle centre. */
+static void test_wall_contacts(void **state)
+{
+    (void)state;
+    mimas_reader *r = open_set(data("hopper_walls/dump.hopper.atom.gz"),
+                               data("hopper_walls/dump.hopper.pgl.gz"),
+                               data("hopper_walls/dump.hopper.wgl"));
+    size_t nw[32];
+    size_t snaps = count_rows(data("hopper_walls/dump.hopper.wgl"), nw, 32);
+    mimas_frame f;
+    mimas_frame_init(&f);
+    mimas_error err;
+    size_t k = 0;
+    int rc;
+    while ((rc = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
+        assert_true(f.has_walls && f.has_contacts);
+        assert_int_equal(f.walls.n, nw[k]);
+        for (size_t c = 0; c < f.walls.n; c++) {
+            size_t i = f.walls.particle[c];
+            double d[3], dist = 0;
+            for (int m = 0; m < 3; m++) {
+                d[m] = f.particles.pos[i][m] - f.walls.point[c][m];
+                dist += d[m] * d[m];
+            }
+            assert_close(f.particles.radius[i] - sqrt(dist), f.walls.overlap[c], 3e-7);
+            assert_int_equal(f.walls.wall[c], 0);
+        }
+        k++;
+    }
+    assert_int_equal(rc, MIMAS_END);
+    assert_int_equal(k, snaps);
+    mimas_frame_free(&f);
+    mimas_reader_close(r);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_periodic_counts_and_values),
+        cmocka_unit_test(test_contacts_match_particles_periodic),
+        cmocka_unit_test(test_contacts_match_particles_triclinic),
+        cmocka_unit_test(test_triclinic_box_from_bounds),
+        cmocka_unit_test(test_wall_contacts),
+    };
+    return cmocka_run_group_tests_name("lammps", tests, NULL, NULL);
+}

@@ -1,0 +1,99 @@
+/* The fast number parser agrees with strtod to the last bit. */
+#include <config.h>
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "numparse.h"
+
+static void same_as_strtod(const char *text)
+{
+    char buf[128];
+    snprintf(buf, sizeof buf, "%s", text);
+    char *p = buf;
+    double v;
+    assert_int_equal(parse_double(&p, &v), 0);
+    double ref = strtod(text, NULL);
+    if (memcmp(&v, &ref, sizeof v) != 0)
+        fail_msg("'%s': %.17g, strtod %.17g", text, v, ref);
+    assert_true(*p == '\0');
+}
+
+static void test_fixed_cases(void **state)
+{
+    (void)state;
+    const char *cases[] = {"0", "-0", "1", "-1", "0.5", ".5", "5.", "1e5", "1E-5", "-2.5e+3",
+                           "0.000123", "123456789012345678", "9007199254740993",
+                           "0.1", "0.3", "1e22", "1e23", "4.9406564584124654e-324",
+                           "2.2250738585072014e-308", "1.7976931348623157e308",
+                           "0.0293135", "-0.00153673", "8.37758e-05", "3.14159265358979323846",
+                           "00012.50", "1234567890123456789e-10"};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++)
+        same_as_strtod(cases[k]);
+}
+
+/* Numbers printed the way LAMMPS does (%g), and with 17 digits. */
+static void test_random_numbers(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    char text[64];
+    for (int k = 0; k < 200000; k++) {
+        double x = (gsl_rng_uniform(rng) - 0.5) * pow(10.0, (double)gsl_rng_uniform_int(rng, 40) - 20.0);
+        const char *fmt[4] = {"%g", "%.17g", "%.9e", "%.12f"};
+        snprintf(text, sizeof text, fmt[k % 4], x);
+        same_as_strtod(text);
+    }
+    gsl_rng_free(rng);
+}
+
+static void test_tokens_and_errors(void **state)
+{
+    (void)state;
+    char line[] = "  12\t-3.5e2 abc 7 1.5x nan inf 1e999";
+    char *p = line;
+    double v;
+    int64_t i;
+    assert_int_equal(parse_int64(&p, &i), 0);
+    assert_int_equal(i, 12);
+    assert_int_equal(parse_double(&p, &v), 0);
+    assert_true(v == -350.0);
+    assert_int_equal(parse_double(&p, &v), -2); /* abc */
+    assert_int_equal(skip_token(&p), 0);
+    assert_int_equal(parse_double(&p, &v), 0);
+    assert_true(v == 7.0);
+    assert_int_equal(parse_double(&p, &v), -2); /* 1.5x */
+    skip_token(&p);
+    assert_int_equal(parse_double(&p, &v), -2); /* nan */
+    skip_token(&p);
+    assert_int_equal(parse_double(&p, &v), -2); /* inf */
+    skip_token(&p);
+    assert_int_equal(parse_double(&p, &v), -2); /* overflow */
+    skip_token(&p);
+    assert_int_equal(parse_double(&p, &v), -1); /* end of line */
+    char ints[] = "12.0 99999999999999999999";
+    p = ints;
+    assert_int_equal(parse_int64(&p, &i), -2);
+    skip_token(&p);
+    assert_int_equal(parse_int64(&p, &i), -2);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_fixed_cases),
+        cmocka_unit_test(test_random_numbers),
+        cmocka_unit_test(test_tokens_and_errors),
+    };
+    return cmocka_run_group_tests_name("numparse", tests, NULL, NULL);
+}
