@@ -89,8 +89,9 @@ static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
             }
         if (c->target != A_EXTRA) {
             if (have[c->target][c->comp]++) {
+                int rc = text_error(&s->in, err, "column '%s' appears twice", tok);
                 free(text);
-                return text_error(&s->in, err, "column '%s' appears twice", tok);
+                return rc;
             }
             prev_idx = 0;
             continue;
@@ -105,8 +106,9 @@ static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
         } else {
             for (size_t e = 0; e < l->nextra; e++)
                 if (!strcmp(l->extra_name[e], idx ? base : tok)) {
+                    int rc = text_error(&s->in, err, "column '%s' appears twice", tok);
                     free(text);
-                    return text_error(&s->in, err, "column '%s' appears twice", tok);
+                    return rc;
                 }
             c->extra = l->nextra++;
             c->comp = 0;

@@ -15,14 +15,15 @@ static const double pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6, 
                                        1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
                                        1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 
+/* Any white space separates tokens (a stray carriage return too). */
 static inline int is_blank(char c)
 {
-    return c == ' ' || c == '\t';
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
 }
 
 static inline int is_end(char c)
 {
-    return c == '\0' || is_blank(c) || c == '\n' || c == '\r';
+    return c == '\0' || is_blank(c);
 }
 
 int skip_token(char **pp)

@@ -50,10 +50,3 @@ int mimas_exit_status(int code)
         return 0;
     return code == MIMAS_EUSAGE ? 1 : 2;
 }
-
-#include "mimas.h"
-
-const char *mimas_version(void)
-{
-    return PACKAGE_VERSION;
-}
