@@ -35,10 +35,7 @@ static const struct {
 
 void atom_layout_free(atom_layout *l)
 {
-    free(l->columns);
-    free(l->cols);
-    free(l->extra_name);
-    free(l->extra_ncomp);
+    dump_columns_free(&l->c);
     memset(l, 0, sizeof *l);
 }
 
@@ -66,13 +63,10 @@ static int split_index(const char *name, char *base, size_t cap)
 static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
 {
     atom_layout_free(l);
-    l->columns = strdup(s->h.columns);
-    size_t cap = 1 + strlen(s->h.columns) / 2;
-    l->cols = calloc(cap, sizeof *l->cols);
-    l->extra_name = calloc(cap, sizeof *l->extra_name);
-    l->extra_ncomp = calloc(cap, sizeof *l->extra_ncomp);
-    if (!l->columns || !l->cols || !l->extra_name || !l->extra_ncomp)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    dump_columns *cl = &l->c;
+    int rc0 = dump_columns_reset(cl, s->h.columns, err);
+    if (rc0)
+        return rc0;
     int have[A_EXTRA][3];
     memset(have, 0, sizeof have);
     int prev_idx = 0;
@@ -80,7 +74,7 @@ static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
     if (!text)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
     for (char *tok = strtok_r(text, " \t", &save); tok; tok = strtok_r(NULL, " \t", &save)) {
-        atom_col *c = &l->cols[l->ncols++];
+        dump_col *c = &cl->cols[cl->ncols++];
         c->target = A_EXTRA;
         for (size_t k = 0; k < sizeof known / sizeof known[0]; k++)
             if (!strcmp(tok, known[k].name)) {
@@ -99,21 +93,19 @@ static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
         /* extras: consecutive X[1], X[2], ... form one column of ncomp values */
         char base[64];
         int idx = split_index(tok, base, sizeof base);
-        if (idx > 1 && l->nextra && idx == prev_idx + 1 &&
-            !strcmp(l->extra_name[l->nextra - 1], base)) {
-            c->extra = l->nextra - 1;
-            c->comp = l->extra_ncomp[c->extra]++;
+        if (idx > 1 && cl->nextra && idx == prev_idx + 1 &&
+            !strcmp(cl->extra_name[cl->nextra - 1], base)) {
+            c->extra = cl->nextra - 1;
+            c->comp = cl->extra_ncomp[c->extra]++;
         } else {
-            for (size_t e = 0; e < l->nextra; e++)
-                if (!strcmp(l->extra_name[e], idx ? base : tok)) {
+            for (size_t e = 0; e < cl->nextra; e++)
+                if (!strcmp(cl->extra_name[e], idx ? base : tok)) {
                     int rc = text_error(&s->in, err, "column '%s' appears twice", tok);
                     free(text);
                     return rc;
                 }
-            c->extra = l->nextra++;
+            c->extra = dump_columns_add_extra(cl, idx ? base : tok, 1);
             c->comp = 0;
-            snprintf(l->extra_name[c->extra], 64, "%s", idx ? base : tok);
-            l->extra_ncomp[c->extra] = 1;
         }
         prev_idx = idx;
     }
@@ -150,12 +142,12 @@ static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
                                            "(all three components are needed)");
     }
     /* position columns not used (e.g. xu beside x) are skipped */
-    for (size_t c = 0; c < l->ncols; c++) {
-        int t = l->cols[c].target;
+    for (size_t c = 0; c < cl->ncols; c++) {
+        int t = cl->cols[c].target;
         if ((t == A_X || t == A_XU || t == A_XS || t == A_XSU) && t != l->pos_target)
-            l->cols[c].target = A_SKIP;
+            cl->cols[c].target = A_SKIP;
         if (t == A_DIAMETER && have[A_RADIUS][0])
-            l->cols[c].target = A_SKIP;
+            cl->cols[c].target = A_SKIP;
     }
     return MIMAS_OK;
 }
@@ -167,16 +159,8 @@ static int setup_frame(atom_layout *l, mimas_frame *f, size_t n, int want_mass,
     unsigned bits = l->bits | (want_mass ? MIMAS_P_MASS : 0);
     mimas_table_keep_only(p, &mimas_particles_desc, bits);
     int rc = mimas_table_set_present(p, &mimas_particles_desc, bits, err);
-    /* extras: rebuild unless they are already these */
-    int same = p->n_extra == l->nextra;
-    for (size_t e = 0; same && e < l->nextra; e++)
-        same = !strcmp(p->extra[e].name, l->extra_name[e]) &&
-               p->extra[e].ncomp == l->extra_ncomp[e];
-    if (!same)
-        mimas_table_drop_extras(p, &mimas_particles_desc);
-    for (size_t e = 0; !rc && e < l->nextra; e++)
-        rc = mimas_table_add_extra(p, &mimas_particles_desc, l->extra_name[e],
-                                   l->extra_ncomp[e], NULL, err);
+    if (!rc)
+        rc = dump_columns_extras_to(&l->c, p, &mimas_particles_desc, err);
     if (!rc)
         rc = mimas_table_resize(p, &mimas_particles_desc, n, err);
     return rc;
@@ -186,8 +170,9 @@ static int parse_row(dump_series *s, const atom_layout *l, mimas_particles *p, s
                      char *row, mimas_error *err)
 {
     char *q = row;
-    for (size_t c = 0; c < l->ncols; c++) {
-        const atom_col *col = &l->cols[c];
+    const size_t ncols = l->c.ncols;
+    for (size_t c = 0; c < ncols; c++) {
+        const dump_col *col = &l->c.cols[c];
         int64_t iv = 0;
         double dv = 0;
         int bad;
@@ -205,7 +190,7 @@ static int parse_row(dump_series *s, const atom_layout *l, mimas_particles *p, s
         }
         if (bad == -1)
             return text_error(&s->in, err, "row has %zu values, the ATOMS header names %zu", c,
-                              l->ncols);
+                              ncols);
         if (bad)
             return text_error(&s->in, err, "value %zu is not %s", c + 1,
                               col->target == A_ID || col->target == A_TYPE ||
@@ -242,7 +227,7 @@ static int parse_row(dump_series *s, const atom_layout *l, mimas_particles *p, s
     }
     if (skip_token(&q) == 0)
         return text_error(&s->in, err, "row has more values than the %zu the ATOMS header names",
-                          l->ncols);
+                          ncols);
     return MIMAS_OK;
 }
 
@@ -250,7 +235,7 @@ int atoms_read(dump_series *s, atom_layout *l, mimas_frame *f, double density, d
                mimas_id_index *index, mimas_error *err)
 {
     int rc = MIMAS_OK;
-    if (!l->columns || strcmp(l->columns, s->h.columns) != 0)
+    if (!dump_columns_current(&l->c, s->h.columns))
         rc = build_layout(s, l, err);
     if (rc)
         return rc;

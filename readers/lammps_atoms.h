@@ -5,21 +5,10 @@
 #include "id_index.h"
 #include "lammps_series.h"
 
-typedef struct atom_col {
-    int target;   /* enum in lammps_atoms.c */
-    int comp;     /* component 0..2, or of the extra column */
-    size_t extra; /* index of the extra column */
-} atom_col;
-
 typedef struct atom_layout {
-    char *columns;      /* header text this layout was built from */
-    size_t ncols;
-    atom_col *cols;
+    dump_columns c;     /* targets: the enum in lammps_atoms.c */
     int pos_target;     /* which position columns are used */
     unsigned bits;      /* particle quantities the columns give */
-    size_t nextra;
-    char (*extra_name)[64];
-    int *extra_ncomp;
 } atom_layout;
 
 /* Parses the rows of the current snapshot of s into f->particles (and sets

@@ -34,10 +34,7 @@ static const struct {
 
 void local_layout_free(local_layout *l)
 {
-    free(l->columns);
-    free(l->cols);
-    free(l->extra_name);
-    free(l->extra_ncomp);
+    dump_columns_free(&l->c);
     const char *kw = l->keywords;
     int walls = l->walls;
     memset(l, 0, sizeof *l);
@@ -47,19 +44,17 @@ void local_layout_free(local_layout *l)
 
 static size_t add_extra(local_layout *l, const char *name, int ncomp)
 {
-    snprintf(l->extra_name[l->nextra], 64, "%s", name);
-    l->extra_ncomp[l->nextra] = ncomp;
-    return l->nextra++;
+    return dump_columns_add_extra(&l->c, name, ncomp);
 }
 
-static void set(local_col *c, int target, int comp)
+static void set(dump_col *c, int target, int comp)
 {
     c->target = target;
     c->comp = comp;
 }
 
 /* The columns of one LIGGGHTS keyword, starting at cols. */
-static void gran_keyword(local_layout *l, const char *key, int width, local_col *cols)
+static void gran_keyword(local_layout *l, const char *key, int width, dump_col *cols)
 {
     for (int k = 0; k < width; k++)
         set(&cols[k], L_SKIP, 0);
@@ -154,20 +149,20 @@ static int gran_layout(dump_series *s, local_layout *l, mimas_error *err)
     for (size_t k = 0; k < NGRAN; k++)
         total += width[k] > 0 ? width[k] : 0;
     if (history_open) {
-        if ((long)l->ncols <= total)
-            return text_error(&s->in, err, "%zu columns leave none for 'history'", l->ncols);
+        if ((long)l->c.ncols <= total)
+            return text_error(&s->in, err, "%zu columns leave none for 'history'", l->c.ncols);
         for (size_t k = 0; k < NGRAN; k++)
             if (gran_order[k].width < 0)
-                width[k] = (int)l->ncols - total;
-        total = (int)l->ncols;
+                width[k] = (int)l->c.ncols - total;
+        total = (int)l->c.ncols;
     }
-    if ((size_t)total != l->ncols)
+    if ((size_t)total != l->c.ncols)
         return text_error(&s->in, err, "the keywords '%s' make %d columns, the dump has %zu",
-                          l->keywords, total, l->ncols);
+                          l->keywords, total, l->c.ncols);
     int at = 0;
     for (size_t k = 0; k < NGRAN; k++)
         if (width[k] > 0) {
-            gran_keyword(l, gran_order[k].key, width[k], &l->cols[at]);
+            gran_keyword(l, gran_order[k].key, width[k], &l->c.cols[at]);
             at += width[k];
         }
     return MIMAS_OK;
@@ -196,12 +191,12 @@ static int named_layout(dump_series *s, local_layout *l, const char *names, mima
     int rc = MIMAS_OK;
     const char *sep = strchr(names, ',') ? "," : " \t";
     for (char *tok = strtok_r(text, sep, &save); tok && !rc; tok = strtok_r(NULL, sep, &save)) {
-        if (c >= l->ncols) {
+        if (c >= l->c.ncols) {
             rc = text_error(&s->in, err, "more column names than the dump's %zu columns",
-                            l->ncols);
+                            l->c.ncols);
             break;
         }
-        local_col *col = &l->cols[c++];
+        dump_col *col = &l->c.cols[c++];
         set(col, L_EXTRA, 0);
         for (size_t k = 0; k < sizeof named / sizeof named[0]; k++)
             if (!strcmp(named[k].name, tok))
@@ -210,8 +205,9 @@ static int named_layout(dump_series *s, local_layout *l, const char *names, mima
             col->extra = add_extra(l, tok, 1);
     }
     free(text);
-    if (!rc && c != l->ncols)
-        rc = text_error(&s->in, err, "%zu column names for the dump's %zu columns", c, l->ncols);
+    if (!rc && c != l->c.ncols)
+        rc = text_error(&s->in, err, "%zu column names for the dump's %zu columns", c,
+                        l->c.ncols);
     return rc;
 }
 
@@ -242,16 +238,12 @@ static int is_anonymous(const char *columns)
 static int build_layout(dump_series *s, local_layout *l, mimas_error *err)
 {
     local_layout_free(l);
-    l->columns = strdup(s->h.columns);
-    size_t cap = 2 + strlen(s->h.columns) / 2;
-    l->cols = calloc(cap, sizeof *l->cols);
-    l->extra_name = calloc(cap, sizeof *l->extra_name);
-    l->extra_ncomp = calloc(cap, sizeof *l->extra_ncomp);
-    if (!l->columns || !l->cols || !l->extra_name || !l->extra_ncomp)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    int rc0 = dump_columns_reset(&l->c, s->h.columns, err);
+    if (rc0)
+        return rc0;
     char *p = s->h.columns;
     while (skip_token(&p) == 0)
-        l->ncols++;
+        l->c.ncols++;
     int gran = l->keywords && all_gran_keywords(l->keywords);
     int rc;
     if (l->keywords && gran)
@@ -268,9 +260,9 @@ static int build_layout(dump_series *s, local_layout *l, mimas_error *err)
         return rc;
     int have[L_EXTRA][3];
     memset(have, 0, sizeof have);
-    for (size_t c = 0; c < l->ncols; c++)
-        if (l->cols[c].target != L_EXTRA && l->cols[c].target != L_SKIP)
-            have[l->cols[c].target][l->cols[c].comp]++;
+    for (size_t c = 0; c < l->c.ncols; c++)
+        if (l->c.cols[c].target != L_EXTRA && l->c.cols[c].target != L_SKIP)
+            have[l->c.cols[c].target][l->c.cols[c].comp]++;
     if (!have[L_ID1][0] || (!l->walls && !have[L_ID2][0]))
         return text_error(&s->in, err, "the contact columns do not name both particle ids");
     l->bits = l->walls ? MIMAS_W_PARTICLE | MIMAS_W_WALL : MIMAS_C_I | MIMAS_C_J;
@@ -349,9 +341,8 @@ static int setup_table(local_layout *l, void *tab, const mimas_table_desc *d, si
 {
     mimas_table_keep_only(tab, d, l->bits);
     int rc = mimas_table_set_present(tab, d, l->bits, err);
-    mimas_table_drop_extras(tab, d);
-    for (size_t e = 0; !rc && e < l->nextra; e++)
-        rc = mimas_table_add_extra(tab, d, l->extra_name[e], l->extra_ncomp[e], NULL, err);
+    if (!rc)
+        rc = dump_columns_extras_to(&l->c, tab, d, err);
     return rc ? rc : mimas_table_resize(tab, d, n, err);
 }
 
@@ -359,7 +350,7 @@ int local_read(dump_series *s, local_layout *l, mimas_frame *f, const mimas_id_i
                mimas_error *err)
 {
     int rc = MIMAS_OK;
-    if (!l->columns || strcmp(l->columns, s->h.columns) != 0)
+    if (!dump_columns_current(&l->c, s->h.columns))
         rc = build_layout(s, l, err);
     if (rc)
         return rc;
@@ -376,13 +367,14 @@ int local_read(dump_series *s, local_layout *l, mimas_frame *f, const mimas_id_i
         char *q = dump_series_row(s, k, &rc, err);
         if (!q)
             break;
-        for (size_t col = 0; !rc && col < l->ncols; col++) {
-            const local_col *lc = &l->cols[col];
+        const size_t ncols = l->c.ncols;
+        for (size_t col = 0; !rc && col < ncols; col++) {
+            const dump_col *lc = &l->c.cols[col];
             double v = 0;
             int bad = lc->target == L_SKIP ? skip_token(&q) : parse_double(&q, &v);
             if (bad == -1) {
                 rc = text_error(&s->in, err, "row has %zu values, the header names %zu", col,
-                                l->ncols);
+                                ncols);
                 break;
             }
             if (bad) {
@@ -430,7 +422,7 @@ int local_read(dump_series *s, local_layout *l, mimas_frame *f, const mimas_id_i
         }
         if (!rc && skip_token(&q) == 0)
             rc = text_error(&s->in, err, "row has more values than the %zu the header names",
-                            l->ncols);
+                            l->c.ncols);
     }
     if (!rc && !l->walls && (l->derive_point || l->derive_overlap))
         rc = derive(l, f, dist, s, err);

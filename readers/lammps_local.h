@@ -7,24 +7,13 @@
 #include "id_index.h"
 #include "lammps_series.h"
 
-typedef struct local_col {
-    int target;   /* enum in lammps_local.c */
-    int comp;
-    size_t extra;
-} local_col;
-
 typedef struct local_layout {
     int walls;           /* wall/gran/local rather than pair contacts */
     const char *keywords;/* --contact-columns / --wall-columns (may be NULL) */
-    char *columns;       /* header text the layout was built from */
-    size_t ncols;
-    local_col *cols;
+    dump_columns c;      /* targets: the enum in lammps_local.c */
     unsigned bits;       /* contact quantities given by columns */
     int derive_point;    /* contact point from positions and radii */
     int derive_overlap;  /* overlap from a distance column */
-    size_t nextra;
-    char (*extra_name)[64];
-    int *extra_ncomp;
 } local_layout;
 
 /* Parses the rows of the current snapshot of s into f->contacts (or

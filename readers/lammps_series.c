@@ -3,6 +3,7 @@
 #include "lammps_series.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -304,4 +305,57 @@ void dump_series_close(dump_series *s)
     free(s->h.columns);
     reader_free_names(s->paths, s->npaths);
     memset(s, 0, sizeof *s);
+}
+
+/* ---- column layouts ---- */
+
+int dump_columns_current(const dump_columns *c, const char *header)
+{
+    return c->header && strcmp(c->header, header) == 0;
+}
+
+void dump_columns_free(dump_columns *c)
+{
+    free(c->header);
+    free(c->cols);
+    free(c->extra_name);
+    free(c->extra_ncomp);
+    memset(c, 0, sizeof *c);
+}
+
+int dump_columns_reset(dump_columns *c, const char *header, mimas_error *err)
+{
+    dump_columns_free(c);
+    size_t cap = 2 + strlen(header) / 2; /* a column takes at least 2 characters */
+    c->header = strdup(header);
+    c->cols = calloc(cap, sizeof *c->cols);
+    c->extra_name = calloc(cap, sizeof *c->extra_name);
+    c->extra_ncomp = calloc(cap, sizeof *c->extra_ncomp);
+    if (!c->header || !c->cols || !c->extra_name || !c->extra_ncomp)
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    return MIMAS_OK;
+}
+
+size_t dump_columns_add_extra(dump_columns *c, const char *name, int ncomp)
+{
+    snprintf(c->extra_name[c->nextra], sizeof c->extra_name[0], "%s", name);
+    c->extra_ncomp[c->nextra] = ncomp;
+    return c->nextra++;
+}
+
+int dump_columns_extras_to(const dump_columns *c, void *tab, const mimas_table_desc *d,
+                           mimas_error *err)
+{
+    const size_t n_extra = *(const size_t *)((const char *)tab + d->off_n_extra);
+    const mimas_extra *extra = *(mimas_extra *const *)((const char *)tab + d->off_extra);
+    int same = n_extra == c->nextra;
+    for (size_t e = 0; same && e < c->nextra; e++)
+        same = !strcmp(extra[e].name, c->extra_name[e]) && extra[e].ncomp == c->extra_ncomp[e];
+    if (same)
+        return MIMAS_OK;
+    mimas_table_drop_extras(tab, d);
+    int rc = MIMAS_OK;
+    for (size_t e = 0; !rc && e < c->nextra; e++)
+        rc = mimas_table_add_extra(tab, d, c->extra_name[e], c->extra_ncomp[e], NULL, err);
+    return rc;
 }

@@ -32,6 +32,35 @@ typedef struct dump_series {
     dump_header h;
 } dump_series;
 
+/* What the columns of a snapshot are, as a per-format parser decided: a
+ * target (the parser's enum) and component per column, plus the extra
+ * columns (named values kept as they are).  Rebuilt when the header text
+ * changes. */
+typedef struct dump_col {
+    int target;
+    int comp;
+    size_t extra;
+} dump_col;
+
+typedef struct dump_columns {
+    char *header;       /* the column names this layout was built from */
+    size_t ncols;
+    dump_col *cols;
+    size_t nextra;
+    char (*extra_name)[64];
+    int *extra_ncomp;
+} dump_columns;
+
+/* 1 if c was built from this header text. */
+int dump_columns_current(const dump_columns *c, const char *header);
+/* Frees c and allocates room for the columns of header; ncols is 0. */
+int dump_columns_reset(dump_columns *c, const char *header, mimas_error *err);
+size_t dump_columns_add_extra(dump_columns *c, const char *name, int ncomp);
+/* Gives the table exactly c's extra columns (kept if they are already those). */
+int dump_columns_extras_to(const dump_columns *c, void *tab, const mimas_table_desc *d,
+                           mimas_error *err);
+void dump_columns_free(dump_columns *c);
+
 /* Takes the file names (ownership passes to the series) and orders them by
  * their first timestep. */
 int dump_series_open(dump_series *s, char **paths, size_t n, mimas_error *err);

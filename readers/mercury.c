@@ -106,10 +106,14 @@ static int error_at(mimas_error *err, const char *path, long line, const char *f
     return mimas_error_set(err, MIMAS_EDATA, "%s:%ld: %s", path, line, msg);
 }
 
-static int token_length(const char *p)
+/* The token at p for a message: at most 40 characters, unprintable bytes as '?'. */
+static const char *quote_token(const char *p, char buf[41])
 {
-    size_t len = strcspn(p, " \t");
-    return len > 40 ? 40 : (int)len;
+    size_t k = 0;
+    for (; k < 40 && p[k] && p[k] != ' ' && p[k] != '\t'; k++)
+        buf[k] = (unsigned char)p[k] < 0x20 || (unsigned char)p[k] >= 0x7f ? '?' : p[k];
+    buf[k] = '\0';
+    return buf;
 }
 
 /* Parses the whitespace-separated numbers at p into v (at most cap of them)
@@ -141,8 +145,9 @@ static int bad_number(const text_input *in, mimas_error *err, const char *line, 
     for (const char *p = line; p < bad; p++)
         if ((p == line || p[-1] == ' ' || p[-1] == '\t') && *p != ' ' && *p != '\t')
             index++;
-    return text_error(in, err, "value %d ('%.*s') is not a finite number", index,
-                      token_length(bad), bad);
+    char q[41];
+    return text_error(in, err, "value %d ('%s') is not a finite number", index,
+                      quote_token(bad, q));
 }
 
 static int is_integral(double x)
@@ -214,46 +219,45 @@ static int empty_file(const merc_files *fs, mimas_error *err, const char *what)
 static int parse_header(merc_state *s, char *line, mimas_error *err)
 {
     const text_input *in = &s->data.in;
-    char *p = line;
+    double v[ROW_3D];
+    char *bad, *p = line;
+    int k = split_numbers(line, v, ROW_3D, &bad);
+    if (k < 0)
+        return bad_number(in, err, line, bad);
+    int dim = k == HEADER_3D ? 3 : k == HEADER_2D ? 2 : 0;
+    if (!dim) {
+        int row = s->file_dim == 3 ? ROW_3D : s->file_dim == 2 ? ROW_2D : -1;
+        return text_error(in, err, "a time-step header has 8 values (3-D: N t xmin ymin zmin "
+                          "xmax ymax zmax) or 6 (2-D: N t xmin ymin xmax ymax); this line has "
+                          "%d%s", k,
+                          k == row ? " (more particle rows than the header announced?)" : "");
+    }
     int64_t n;
+    char q[41];
     if (parse_int64(&p, &n) != 0)
-        return text_error(in, err, "expected a time-step header 'N t xmin ymin [zmin] xmax "
-                          "ymax [zmax]'; '%.*s' is not a particle count",
-                          token_length(line + strspn(line, " \t")), line + strspn(line, " \t"));
+        return text_error(in, err, "'%s' is not a particle count (the first value of a "
+                          "time-step header)", quote_token(line + strspn(line, " \t"), q));
     if (n < 0)
         return text_error(in, err, "negative particle count %lld in a time-step header",
                           (long long)n);
     if (n > MAX_PARTICLES)
         return text_error(in, err, "particle count %lld is absurd (more than %lld): not a "
                           "MercuryDPM time-step header", (long long)n, MAX_PARTICLES);
-    double v[HEADER_3D];
-    char *bad;
-    int k = split_numbers(p, v, HEADER_3D - 1, &bad);
-    if (k < 0)
-        return bad_number(in, err, line, bad);
-    int dim = k + 1 == HEADER_3D ? 3 : k + 1 == HEADER_2D ? 2 : 0;
-    if (!dim) {
-        int row = s->file_dim == 3 ? ROW_3D : s->file_dim == 2 ? ROW_2D : -1;
-        return text_error(in, err, "a time-step header has 8 values (3-D: N t xmin ymin zmin "
-                          "xmax ymax zmax) or 6 (2-D: N t xmin ymin xmax ymax); this line has "
-                          "%d%s", k + 1,
-                          k + 1 == row ? " (more particle rows than the header announced?)" : "");
-    }
     if (s->file_dim && dim != s->file_dim)
         return text_error(in, err, "%d-D time-step header in a file whose first time step is "
                           "%d-D", dim, s->file_dim);
     mimas_box b;
     memset(&b, 0, sizeof b);
     for (int a = 0; a < dim; a++) {
-        b.lo[a] = v[1 + a];
-        b.hi[a] = v[1 + dim + a];
+        b.lo[a] = v[2 + a];
+        b.hi[a] = v[2 + dim + a];
         if (b.lo[a] > b.hi[a])
             return text_error(in, err, "box minimum %.10g exceeds maximum %.10g in %c", b.lo[a],
                               b.hi[a], "xyz"[a]);
     }
     s->file_dim = s->dim = dim;
     s->hdr_n = n;
-    s->hdr_t = v[0];
+    s->hdr_t = v[1];
     s->hdr_line = in->line;
     s->hdr_box = b; /* not periodic: .data files do not record periodicity */
     return MIMAS_OK;

@@ -104,11 +104,15 @@ int h5_attr_write_double(hid_t obj, const char *name, double value)
     return rc;
 }
 
+/* The attribute, or a negative id if it does not exist. */
+static hid_t open_attr(hid_t obj, const char *name)
+{
+    return H5Aexists(obj, name) > 0 ? H5Aopen(obj, name, H5P_DEFAULT) : H5I_INVALID_HID;
+}
+
 int h5_attr_read_ints(hid_t obj, const char *name, int *values, size_t n)
 {
-    if (H5Aexists(obj, name) <= 0)
-        return -1;
-    hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+    hid_t a = open_attr(obj, name);
     if (a < 0)
         return -1;
     hid_t s = H5Aget_space(a);
@@ -123,9 +127,7 @@ int h5_attr_read_ints(hid_t obj, const char *name, int *values, size_t n)
 
 int h5_attr_read_str(hid_t obj, const char *name, char *buf, size_t len)
 {
-    if (H5Aexists(obj, name) <= 0)
-        return -1;
-    hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+    hid_t a = open_attr(obj, name);
     if (a < 0)
         return -1;
     hid_t ft = H5Aget_type(a);
@@ -164,9 +166,7 @@ int h5_attr_read_str(hid_t obj, const char *name, char *buf, size_t len)
 
 int h5_attr_read_strs(hid_t obj, const char *name, char (*values)[16], size_t n)
 {
-    if (H5Aexists(obj, name) <= 0)
-        return -1;
-    hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+    hid_t a = open_attr(obj, name);
     if (a < 0)
         return -1;
     hid_t s = H5Aget_space(a);
