@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include "assert_close.h"
@@ -291,6 +292,46 @@ static void test_wall_contacts(void **state)
     mimas_reader_close(r);
 }
 
+/* Scaled coordinates in a tilted box, diameters, masses from --density, ITEM: TIME. */
+static void test_scaled_diameter_density(void **state)
+{
+    (void)state;
+    char path[] = "/tmp/mimas-test-scaled-XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *fp = fdopen(fd, "w");
+    /* bounds: x 0..2 with xy = 0.5, xz = 0, yz = 0  ->  xlo = 0, xhi = 1.5 */
+    fputs("ITEM: TIME\n0.25\nITEM: TIMESTEP\n7\nITEM: NUMBER OF ATOMS\n2\n"
+          "ITEM: BOX BOUNDS xy xz yz pp pp ff\n0 2 0.5\n0 1 0\n-1 1 0\n"
+          "ITEM: ATOMS id xs ys zs diameter\n5 0.5 0.5 0.5 0.2\n9 0 1 0 0.4\n", fp);
+    fclose(fp);
+    const char *inputs[1] = {path};
+    mimas_reader_options o;
+    mimas_reader_options_default(&o);
+    o.density = 2000;
+    mimas_reader *r;
+    mimas_error err;
+    assert_int_equal(mimas_reader_open(&r, inputs, 1, &o, &err), MIMAS_OK);
+    mimas_frame f;
+    mimas_frame_init(&f);
+    assert_int_equal(mimas_reader_next(r, &f, &err), MIMAS_OK);
+    assert_true(f.time == 0.25 && f.step == 7);
+    assert_true(f.box.lo[0] == 0 && f.box.hi[0] == 1.5 && f.box.xy == 0.5);
+    assert_true(f.box.periodic[0] && f.box.periodic[1] && !f.box.periodic[2]);
+    /* x = lo + xs Lx + ys xy: (0.5*1.5 + 0.5*0.5, 0.5, -1 + 0.5*2) = (1.0, 0.5, 0) */
+    assert_close(f.particles.pos[0][0], 1.0, 1e-15);
+    assert_close(f.particles.pos[0][1], 0.5, 1e-15);
+    assert_close(f.particles.pos[0][2], 0.0, 1e-15);
+    assert_close(f.particles.pos[1][0], 0.5, 1e-15); /* ys = 1 shifts x by xy */
+    assert_true(f.particles.radius[0] == 0.1 && f.particles.radius[1] == 0.2);
+    assert_close(f.particles.mass[1], 2000 * 4.0 / 3.0 * M_PI * 0.008, 1e-12);
+    assert_false(f.particles.present & MIMAS_P_TYPE);
+    assert_int_equal(mimas_reader_next(r, &f, &err), MIMAS_END);
+    mimas_frame_free(&f);
+    mimas_reader_close(r);
+    remove(path);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -299,6 +340,7 @@ int main(void)
         cmocka_unit_test(test_contacts_match_particles_triclinic),
         cmocka_unit_test(test_triclinic_box_from_bounds),
         cmocka_unit_test(test_wall_contacts),
+        cmocka_unit_test(test_scaled_diameter_density),
     };
     return cmocka_run_group_tests_name("lammps", tests, NULL, NULL);
 }
