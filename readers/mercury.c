@@ -106,11 +106,15 @@ static int error_at(mimas_error *err, const char *path, long line, const char *f
     return mimas_error_set(err, MIMAS_EDATA, "%s:%ld: %s", path, line, msg);
 }
 
+/* Separators between values ('\r' too: skip_token stops at one without
+ * passing it, so it must be skipped here). */
+static const char SEPARATORS[] = " \t\r\v\f";
+
 /* The token at p for a message: at most 40 characters, unprintable bytes as '?'. */
 static const char *quote_token(const char *p, char buf[41])
 {
     size_t k = 0;
-    for (; k < 40 && p[k] && p[k] != ' ' && p[k] != '\t'; k++)
+    for (; k < 40 && p[k] && !strchr(SEPARATORS, p[k]); k++)
         buf[k] = (unsigned char)p[k] < 0x20 || (unsigned char)p[k] >= 0x7f ? '?' : p[k];
     buf[k] = '\0';
     return buf;
@@ -123,8 +127,7 @@ static int split_numbers(char *p, double *v, int cap, char **bad)
 {
     int count = 0;
     for (;;) {
-        while (*p == ' ' || *p == '\t')
-            p++;
+        p += strspn(p, SEPARATORS);
         if (*p == '\0')
             return count;
         if (count < cap) {
@@ -143,7 +146,7 @@ static int bad_number(const text_input *in, mimas_error *err, const char *line, 
 {
     int index = 1;
     for (const char *p = line; p < bad; p++)
-        if ((p == line || p[-1] == ' ' || p[-1] == '\t') && *p != ' ' && *p != '\t')
+        if ((p == line || strchr(SEPARATORS, p[-1])) && !strchr(SEPARATORS, *p))
             index++;
     char q[41];
     return text_error(in, err, "value %d ('%s') is not a finite number", index,
@@ -201,7 +204,7 @@ static char *next_line(merc_files *fs, int *rc, mimas_error *err)
         char *line = text_line(&fs->in, &len, rc, err);
         if (!line)
             return NULL;
-        if (line[strspn(line, " \t")] != '\0') {
+        if (line[strspn(line, SEPARATORS)] != '\0') {
             fs->got_any = 1;
             return line;
         }

@@ -11,7 +11,8 @@
 
 #include "backend.h"
 
-static const reader_backend *const backends[] = {&reader_native, &reader_lammps};
+static const reader_backend *const backends[] = {&reader_native, &reader_lammps,
+                                                 &reader_mercury};
 #define NBACKENDS (sizeof backends / sizeof backends[0])
 
 struct mimas_reader {
