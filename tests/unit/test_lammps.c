@@ -332,6 +332,57 @@ static void test_scaled_diameter_density(void **state)
     remove(path);
 }
 
+/* LAMMPS pair/local + property/local with anonymous columns named by
+ * --contact-columns: overlap from the distance, the contact point derived
+ * along the branch (PHYSICS 2), across a periodic face too. */
+static void test_lammps_pair_local_derived_point(void **state)
+{
+    (void)state;
+    char atoms[] = "/tmp/mimas-test-pl-atoms-XXXXXX", pairs[] = "/tmp/mimas-test-pl-XXXXXX";
+    FILE *fa = fdopen(mkstemp(atoms), "w"), *fp = fdopen(mkstemp(pairs), "w");
+    assert_non_null(fa);
+    assert_non_null(fp);
+    /* 1 and 2 touch along x (gap 0.18, radii 0.1 and 0.1); 3 and 4 across
+     * the periodic x face: x = 0.05 and x = 0.97 are 0.08 apart */
+    fputs("ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n4\nITEM: BOX BOUNDS pp pp pp\n"
+          "0 1\n0 1\n0 1\nITEM: ATOMS id x y z radius\n1 0.1 0.5 0.5 0.1\n"
+          "2 0.28 0.5 0.5 0.1\n3 0.05 0.2 0.2 0.05\n4 0.97 0.2 0.2 0.04\n", fa);
+    fputs("ITEM: TIMESTEP\n0\nITEM: NUMBER OF ENTRIES\n2\nITEM: BOX BOUNDS pp pp pp\n"
+          "0 1\n0 1\n0 1\nITEM: ENTRIES c_pa[1] c_pa[2] c_pl[1] c_pl[2] c_pl[3] c_pl[4]\n"
+          "2 1 0.18 0.3 0 0\n3 4 0.08 0.2 0 0\n", fp);
+    fclose(fa);
+    fclose(fp);
+    const char *inputs[1] = {atoms}, *contacts[1] = {pairs};
+    mimas_reader_options o;
+    mimas_reader_options_default(&o);
+    o.contacts = contacts;
+    o.ncontacts = 1;
+    o.contact_columns = "patom1,patom2,dist,fx,fy,fz";
+    mimas_reader *r;
+    mimas_error err;
+    assert_int_equal(mimas_reader_open(&r, inputs, 1, &o, &err), MIMAS_OK);
+    mimas_frame f;
+    mimas_frame_init(&f);
+    if (mimas_reader_next(r, &f, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(f.contacts.n, 2);
+    /* contact 0: i = atom 2 (x 0.28), j = atom 1: delta = 0.2 - 0.18 = 0.02,
+     * n = +x (from j to i), c = r_i - (R_i - delta/2) n = 0.28 - 0.09 = 0.19 */
+    assert_int_equal(f.particles.id[f.contacts.i[0]], 2);
+    assert_close(f.contacts.overlap[0], 0.02, 1e-15);
+    assert_close(f.contacts.point[0][0], 0.19, 1e-15);
+    assert_close(f.contacts.point[0][1], 0.5, 1e-15);
+    assert_true(f.contacts.force[0][0] == 0.3);
+    /* contact 1: i = atom 3 (x 0.05), j = atom 4 imaged to x = -0.03:
+     * delta = 0.09 - 0.08 = 0.01, n = +x, c = 0.05 - (0.05 - 0.005) = 0.005 */
+    assert_close(f.contacts.overlap[1], 0.01, 1e-15);
+    assert_close(f.contacts.point[1][0], 0.005, 1e-15);
+    mimas_frame_free(&f);
+    mimas_reader_close(r);
+    remove(atoms);
+    remove(pairs);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -341,6 +392,7 @@ int main(void)
         cmocka_unit_test(test_triclinic_box_from_bounds),
         cmocka_unit_test(test_wall_contacts),
         cmocka_unit_test(test_scaled_diameter_density),
+        cmocka_unit_test(test_lammps_pair_local_derived_point),
     };
     return cmocka_run_group_tests_name("lammps", tests, NULL, NULL);
 }

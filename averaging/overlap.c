@@ -1,0 +1,723 @@
+/* Sphere-cell volumes and segment-cell fractions for Heaviside bins.  The
+ * formulas are derived in docs/overlap.md; the section names below refer to
+ * it. */
+#include <config.h>
+
+#include "overlap.h"
+
+#include <math.h>
+
+#include <gsl/gsl_integration.h>
+
+static const double PI = 3.14159265358979323846;
+static const double TWO_PI = 6.28318530717958647693;
+static const double FOUR_THIRDS_PI = 4.18879020478639098462;
+
+/* ---- ball and box: closed forms ("Ball and box") ------------------------- */
+
+/* Volume of the unit ball in the half-space x > a, -1 <= a <= 1 (a cap). */
+static double unit_cap(double a)
+{
+    double h = 1.0 - a;
+    return PI / 3.0 * h * h * (3.0 - h);
+}
+
+/* Volume of the unit ball in x > a, y > b; a, b >= 0, a^2 + b^2 < 1. */
+static double unit_wedge(double a, double b)
+{
+    double s = sqrt((1.0 - a * a) - b * b);
+    return (2.0 * atan2(s, a * b) - a * (3.0 - a * a) * atan2(s, b) -
+            b * (3.0 - b * b) * atan2(s, a) + 2.0 * a * b * s) /
+           3.0;
+}
+
+/* Volume of the unit ball in x > a, y > b, z > c; a, b, c >= 0,
+ * a^2 + b^2 + c^2 < 1: divergence theorem with the solid angle from
+ * Gauss-Bonnet. */
+static double unit_octant(double a, double b, double c)
+{
+    double sab = sqrt((1.0 - a * a) - b * b);
+    double sac = sqrt((1.0 - a * a) - c * c);
+    double sbc = sqrt((1.0 - b * b) - c * c);
+    double corners = atan2(sab, a * b) + atan2(sac, a * c) + atan2(sbc, b * c) - PI;
+    double ta = atan2(sab * sac - b * c, b * sac + c * sab);
+    double tb = atan2(sab * sbc - a * c, a * sbc + c * sab);
+    double tc = atan2(sac * sbc - a * b, a * sbc + b * sac);
+    double v = corners -
+               0.5 * (a * (3.0 - a * a) * ta + b * (3.0 - b * b) * tb + c * (3.0 - c * c) * tc) -
+               3.0 * a * b * c + a * b * sab + a * c * sac + b * c * sbc;
+    return v / 3.0;
+}
+
+/* Unit ball in {x_k > t_k} for the n thresholds t (all >= 0). */
+static double unit_corner(int n, const double *t)
+{
+    double q = 0.0;
+    for (int k = 0; k < n; k++)
+        q += t[k] * t[k];
+    if (q >= 1.0)
+        return 0.0;
+    switch (n) {
+    case 0:
+        return FOUR_THIRDS_PI;
+    case 1:
+        return unit_cap(t[0]);
+    case 2:
+        return unit_wedge(t[0], t[1]);
+    default:
+        return unit_octant(t[0], t[1], t[2]);
+    }
+}
+
+#define NO_CUT (-1.0)
+
+double overlap_sphere_box(const double c[3], double R, const double lo[3], const double hi[3])
+{
+    if (!(R > 0.0))
+        return R == R ? 0.0 : R;
+    double l[3], h[3];
+    int cuts = 0;
+    for (int i = 0; i < 3; i++) {
+        l[i] = (lo[i] - c[i]) / R;
+        h[i] = (hi[i] - c[i]) / R;
+        if (isnan(l[i]) || isnan(h[i]))
+            return NAN;
+        if (!(l[i] < h[i]) || l[i] >= 1.0 || h[i] <= -1.0)
+            return 0.0;
+        cuts += (l[i] > -1.0) + (h[i] < 1.0);
+    }
+    double V = FOUR_THIRDS_PI * R * R * R;
+    if (cuts == 0)
+        return V;
+    /* the box inside the ball */
+    double far = 0.0;
+    for (int i = 0; i < 3; i++)
+        far += fmax(l[i] * l[i], h[i] * h[i]);
+    if (far <= 1.0)
+        return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+    /* one cut plane: a cap */
+    if (cuts == 1) {
+        for (int i = 0; i < 3; i++) {
+            if (l[i] > -1.0)
+                return R * R * R * unit_cap(l[i]);
+            if (h[i] < 1.0)
+                return R * R * R * unit_cap(-h[i]);
+        }
+    }
+    /* Inclusion-exclusion: along each axis the interval indicator is a signed
+     * sum of half-line indicators {s x > t} with t >= 0 (or no constraint);
+     * by symmetry the ball in {s_k x_k > t_k} is a unit_corner(). */
+    double t[3][3], sg[3][3];
+    int nt[3];
+    for (int i = 0; i < 3; i++) {
+        int lc = l[i] > -1.0, hc = h[i] < 1.0, k = 0;
+        if (l[i] >= 0.0) {
+            t[i][k] = l[i], sg[i][k++] = 1.0;
+            if (hc)
+                t[i][k] = h[i], sg[i][k++] = -1.0;
+        } else if (h[i] <= 0.0) {
+            t[i][k] = -h[i], sg[i][k++] = 1.0;
+            if (lc)
+                t[i][k] = -l[i], sg[i][k++] = -1.0;
+        } else {
+            t[i][k] = NO_CUT, sg[i][k++] = 1.0;
+            if (lc)
+                t[i][k] = -l[i], sg[i][k++] = -1.0;
+            if (hc)
+                t[i][k] = h[i], sg[i][k++] = -1.0;
+        }
+        nt[i] = k;
+    }
+    double sum = 0.0;
+    for (int i = 0; i < nt[0]; i++)
+        for (int j = 0; j < nt[1]; j++)
+            for (int k = 0; k < nt[2]; k++) {
+                double tt[3];
+                int n = 0;
+                if (t[0][i] != NO_CUT)
+                    tt[n++] = t[0][i];
+                if (t[1][j] != NO_CUT)
+                    tt[n++] = t[1][j];
+                if (t[2][k] != NO_CUT)
+                    tt[n++] = t[2][k];
+                double w = unit_corner(n, tt);
+                if (w != 0.0)
+                    sum += sg[0][i] * sg[1][j] * sg[2][k] * w;
+            }
+    double v = sum * R * R * R;
+    return v > 0.0 ? fmin(v, V) : 0.0;
+}
+
+/* ---- segment and box ------------------------------------------------------ */
+
+double segment_fraction_box(const double a[3], const double b[3], const double lo[3],
+                            const double hi[3])
+{
+    double t0 = 0.0, t1 = 1.0, w = 1.0;
+    for (int i = 0; i < 3; i++) {
+        if (isnan(a[i]) || isnan(b[i]) || isnan(lo[i]) || isnan(hi[i]))
+            return NAN;
+        if (!(lo[i] < hi[i]))
+            return 0.0;
+        double d = b[i] - a[i];
+        if (d == 0.0) {
+            if (a[i] < lo[i] || a[i] > hi[i])
+                return 0.0;
+            if (a[i] == lo[i] || a[i] == hi[i])
+                w *= 0.5;
+        } else {
+            double u = (lo[i] - a[i]) / d, v = (hi[i] - a[i]) / d;
+            if (d < 0.0) {
+                double s = u;
+                u = v;
+                v = s;
+            }
+            t0 = fmax(t0, u);
+            t1 = fmin(t1, v);
+        }
+    }
+    return t1 > t0 ? w * (t1 - t0) : 0.0;
+}
+
+/* ---- cylindrical cells ----------------------------------------------------- */
+
+typedef struct cylcell {
+    double r0, r1;       /* 0 <= r0 < r1 (r1 may be infinite) */
+    double z0, z1;       /* z0 < z1 */
+    int full;            /* no angular bounds */
+    int wide;            /* opening angle > pi */
+    double dphi;         /* opening angle, (0, 2 pi] */
+    double e0[2], e1[2]; /* unit vectors along the rays phi0 and phi1 */
+} cylcell;
+
+/* Unit vector at angle phi, reduced modulo 2 pi first so that phi and
+ * phi + 2 pi give the same vector, with components below 1e-15 set to 0 so
+ * that multiples of pi/2 give the axes exactly. */
+static void unit_dir(double phi, double e[2])
+{
+    double p = fmod(phi, TWO_PI);
+    if (p < 0.0)
+        p += TWO_PI;
+    e[0] = cos(p);
+    e[1] = sin(p);
+    if (fabs(e[0]) < 1e-15)
+        e[0] = 0.0, e[1] = e[1] > 0.0 ? 1.0 : -1.0;
+    else if (fabs(e[1]) < 1e-15)
+        e[1] = 0.0, e[0] = e[0] > 0.0 ? 1.0 : -1.0;
+}
+
+/* -1: a NaN argument; 0: an empty cell; 1: set up. */
+static int cell_setup(cylcell *g, double r0, double r1, double phi0, double phi1, double z0,
+                      double z1)
+{
+    if (isnan(r0) || isnan(r1) || isnan(phi0) || isnan(phi1) || isnan(z0) || isnan(z1))
+        return -1;
+    if (r0 < 0.0)
+        r0 = 0.0;
+    if (!(r1 > r0) || !(phi1 > phi0) || !(z1 > z0))
+        return 0;
+    g->r0 = r0;
+    g->r1 = r1;
+    g->z0 = z0;
+    g->z1 = z1;
+    double dphi = phi1 - phi0;
+    if (dphi >= TWO_PI) {
+        g->full = 1;
+        g->wide = 1;
+        g->dphi = TWO_PI;
+        g->e0[0] = g->e1[0] = 1.0;
+        g->e0[1] = g->e1[1] = 0.0;
+    } else {
+        g->full = 0;
+        g->wide = dphi > PI;
+        g->dphi = dphi;
+        unit_dir(phi0, g->e0);
+        unit_dir(phi1, g->e1);
+    }
+    return 1;
+}
+
+static double cross2(const double u[2], double x, double y)
+{
+    return u[0] * y - u[1] * x;
+}
+
+/* Is the point (x, y) in the closed wedge? (the axis is) */
+static int in_wedge(const cylcell *g, double x, double y)
+{
+    if (g->full)
+        return 1;
+    double s0 = cross2(g->e0, x, y);  /* > 0: counterclockwise of ray 0 */
+    double s1 = -cross2(g->e1, x, y); /* > 0: clockwise of ray 1 */
+    return g->wide ? (s0 >= 0.0 || s1 >= 0.0) : (s0 >= 0.0 && s1 >= 0.0);
+}
+
+enum { W_INSIDE, W_OUTSIDE, W_CUT };
+
+/* Position of the disk |x - p| <= rho (p at distance d from the axis)
+ * relative to the wedge; *rays gets bit k set when ray k meets the disk. */
+static int disk_wedge(const cylcell *g, double px, double py, double d, double rho, int *rays)
+{
+    *rays = 0;
+    if (g->full)
+        return W_INSIDE;
+    const double *e[2] = {g->e0, g->e1};
+    for (int k = 0; k < 2; k++) {
+        double s = e[k][0] * px + e[k][1] * py;
+        double dist = s > 0.0 ? fabs(cross2(e[k], px, py)) : d;
+        if (dist < rho)
+            *rays |= 1 << k;
+    }
+    if (*rays)
+        return W_CUT;
+    return in_wedge(g, px, py) ? W_INSIDE : W_OUTSIDE;
+}
+
+/* beta - sin(beta), accurate for small beta */
+static double bms(double x)
+{
+    if (fabs(x) < 0.5) {
+        double x2 = x * x, term = x * x2 / 6.0, s = 0.0;
+        for (int k = 2; k < 18 && term != 0.0; k += 2) {
+            s += term;
+            term *= -x2 / ((k + 2.0) * (k + 3.0));
+        }
+        return s;
+    }
+    return x - sin(x);
+}
+
+static void sort_doubles(double *v, int n)
+{
+    for (int i = 1; i < n; i++) {
+        double x = v[i];
+        int j = i - 1;
+        while (j >= 0 && v[j] > x) {
+            v[j + 1] = v[j];
+            j--;
+        }
+        v[j + 1] = x;
+    }
+}
+
+/* Where the circle of radius rho about p (|p| = d > 0) meets the circle of
+ * radius r about the axis: the intersection points are X = a u +- h v
+ * (u = p/d, v = u rotated by +90 degrees).  Returns 0 when they do not cross.
+ * *beta: angle of X seen from the axis, *tau: seen from p, both from u. */
+static int circles_meet(double d, double rho, double r, double *beta, double *tau)
+{
+    double rmd = r - d;
+    double rma = (rho - rmd) * (rho + rmd) / (2.0 * d); /* r - a */
+    if (!(rma > 0.0 && rma < 2.0 * r))
+        return 0;
+    double h = sqrt(rma * (2.0 * r - rma));
+    *beta = atan2(h, r - rma);
+    *tau = atan2(h, rmd - rma);
+    return 1;
+}
+
+/* Area of the disk |x - p| <= rho intersected with the annular sector:
+ * Green's theorem, area = 1/2 closed integral of (x - p) x dx along the
+ * boundary of the intersection ("Disk and annular sector"). */
+static double disk_cell_area(const cylcell *g, double px, double py, double d, double rho)
+{
+    if (!(rho > 0.0))
+        return 0.0;
+    double r0 = g->r0, r1 = g->r1;
+    if (d == 0.0) {
+        double ro = fmin(rho, r1);
+        return ro > r0 ? 0.5 * g->dphi * (ro - r0) * (ro + r0) : 0.0;
+    }
+    double ux = px / d, uy = py / d; /* u, and v = (-uy, ux) */
+    double rr[2] = {r1, r0};
+    int nr = r0 > 0.0 ? 2 : 1;
+    double tau[12], beta[2][8];
+    int ntau = 0, nbeta[2] = {0, 0};
+    for (int k = 0; k < nr; k++) {
+        double b, t;
+        if (circles_meet(d, rho, rr[k], &b, &t)) {
+            beta[k][nbeta[k]++] = b;
+            beta[k][nbeta[k]++] = -b;
+            tau[ntau++] = t;
+            tau[ntau++] = -t;
+        }
+    }
+    double sum = 0.0;
+    if (!g->full) {
+        const double *e[2] = {g->e0, g->e1};
+        for (int k = 0; k < 2; k++) {
+            double ex = e[k][0], ey = e[k][1];
+            /* p = s e + cc w with w = e rotated by +90 degrees */
+            double s = ex * px + ey * py, cc = cross2(e[k], px, py);
+            /* the ray's direction seen from the axis, relative to u */
+            double eb = atan2(ux * ey - uy * ex, ux * ex + uy * ey);
+            for (int m = 0; m < nr; m++)
+                beta[m][nbeta[m]++] = eb;
+            if (fabs(cc) < rho) {
+                double hh = sqrt((rho - cc) * (rho + cc));
+                /* X - p = +-hh e - cc w, w = (-ey, ex) */
+                for (int sg = -1; sg <= 1; sg += 2) {
+                    double vx = sg * hh * ex + cc * ey, vy = sg * hh * ey - cc * ex;
+                    tau[ntau++] = atan2(ux * vy - uy * vx, ux * vx + uy * vy);
+                }
+                /* the part of the ray segment r0 <= s <= r1 inside the disk:
+                 * ray 0 runs outwards, ray 1 inwards along the boundary */
+                double sa = fmax(r0, s - hh), sb = fmin(r1, s + hh);
+                if (sb > sa)
+                    sum += (k == 0 ? 1.0 : -1.0) * (sb - sa) * cc;
+            }
+        }
+    }
+    /* arcs of the disk's circle inside the cell */
+    sort_doubles(tau, ntau);
+    double prev = -PI, arcs = 0.0;
+    for (int i = 0; i <= ntau; i++) {
+        double next = i < ntau ? tau[i] : PI;
+        if (next > prev) {
+            double tm = 0.5 * (prev + next), ct = cos(tm), st = sin(tm);
+            int ok = 1;
+            /* |q|^2 - r^2 with q = p + rho (cos tm u + sin tm v) */
+            double q2 = rho * rho + 2.0 * rho * d * ct;
+            if ((d - r1) * (d + r1) + q2 > 0.0)
+                ok = 0;
+            else if (r0 > 0.0 && (d - r0) * (d + r0) + q2 < 0.0)
+                ok = 0;
+            else if (!g->full) {
+                double qx = px + rho * (ct * ux - st * uy), qy = py + rho * (ct * uy + st * ux);
+                ok = in_wedge(g, qx, qy);
+            }
+            if (ok)
+                arcs += next - prev;
+        }
+        prev = next;
+    }
+    sum += rho * rho * arcs;
+    /* arcs of the circles r1 (counterclockwise) and r0 (clockwise) inside the
+     * disk and the wedge */
+    for (int k = 0; k < nr; k++) {
+        double r = rr[k], *bk = beta[k];
+        int nb = nbeta[k];
+        sort_doubles(bk, nb);
+        double bprev = -PI, part = 0.0;
+        for (int i = 0; i <= nb; i++) {
+            double next = i < nb ? bk[i] : PI;
+            if (next > bprev) {
+                double bm = 0.5 * (bprev + next), sh = sin(0.5 * bm);
+                int ok = (r - d) * (r - d) + 4.0 * r * d * sh * sh <= rho * rho;
+                if (ok && !g->full) {
+                    double cb = cos(bm), sb = sin(bm);
+                    ok = in_wedge(g, cb * ux - sb * uy, cb * uy + sb * ux);
+                }
+                if (ok)
+                    part += r * (r - d) * (next - bprev) + r * d * (bms(next) - bms(bprev));
+            }
+            bprev = next;
+        }
+        sum += k == 0 ? part : -part;
+    }
+    double area = 0.5 * sum;
+    double cap = PI * rho * rho;
+    if (isfinite(r1))
+        cap = fmin(cap, 0.5 * g->dphi * (r1 - r0) * (r1 + r0));
+    return area > 0.0 ? fmin(area, cap) : 0.0;
+}
+
+enum { K_EMPTY, K_DISK_IN, K_CELL_IN, K_CUT };
+
+/* How the disk |x - p| <= rho meets the annular sector. */
+static int disk_cell_kind(const cylcell *g, double px, double py, double d, double rho)
+{
+    double r0 = g->r0, r1 = g->r1;
+    if (d - rho >= r1 || d + rho <= r0)
+        return K_EMPTY;
+    int rays, w = disk_wedge(g, px, py, d, rho, &rays);
+    if (w == W_OUTSIDE)
+        return K_EMPTY;
+    if (w == W_INSIDE && d + rho <= r1 && (r0 == 0.0 || d - rho >= r0))
+        return K_DISK_IN;
+    /* the sector inside the disk: its farthest point from p is */
+    double far = r0 == 0.0 ? d : 0.0;
+    for (int k = 0; k < (r0 > 0.0 ? 2 : 1); k++) {
+        double r = k == 0 ? r1 : r0, f;
+        if (in_wedge(g, -px, -py)) {
+            f = r + d;
+        } else {
+            double a0 = hypot(r * g->e0[0] - px, r * g->e0[1] - py);
+            double a1 = hypot(r * g->e1[0] - px, r * g->e1[1] - py);
+            f = fmax(a0, a1);
+        }
+        far = fmax(far, f);
+    }
+    return far <= rho ? K_CELL_IN : K_CUT;
+}
+
+/* pi * integral of (R^2 - w^2) over wa <= w <= wb, -R <= wa <= wb <= R: the
+ * part of the ball between two parallel planes, without cancellation. */
+static double zone(double R, double wa, double wb)
+{
+    double pa = R - wa, ma = R + wa, pb = R - wb, mb = R + wb;
+    return PI * (wb - wa) * (pa * ma + pb * mb + 0.5 * (pa * mb + ma * pb)) / 3.0;
+}
+
+/* ---- adaptive quadrature: GSL's 21-point Gauss-Kronrod rule, bisecting the
+ * interval with the largest error estimate (QUADPACK QAG without the
+ * workspace and without GSL's error handler, which aborts by default) ---- */
+
+#define QUAD_LIMIT 64
+
+static double adapt_qk21(const gsl_function *f, double a, double b, double epsabs, double epsrel)
+{
+    double ia[QUAD_LIMIT], ib[QUAD_LIMIT], ir[QUAD_LIMIT], ie[QUAD_LIMIT];
+    double resabs, resasc;
+    gsl_integration_qk21(f, a, b, &ir[0], &ie[0], &resabs, &resasc);
+    ia[0] = a;
+    ib[0] = b;
+    int n = 1;
+    for (;;) {
+        double tot = 0.0, err = 0.0;
+        int worst = 0;
+        for (int i = 0; i < n; i++) {
+            tot += ir[i];
+            err += ie[i];
+            if (ie[i] > ie[worst])
+                worst = i;
+        }
+        if (err <= fmax(epsabs, epsrel * fabs(tot)) || n >= QUAD_LIMIT)
+            return tot;
+        double lo = ia[worst], hi = ib[worst], mid = 0.5 * (lo + hi);
+        if (!(mid > lo && mid < hi))
+            return tot;
+        gsl_integration_qk21(f, lo, mid, &ir[worst], &ie[worst], &resabs, &resasc);
+        ib[worst] = mid;
+        gsl_integration_qk21(f, mid, hi, &ir[n], &ie[n], &resabs, &resasc);
+        ia[n] = mid;
+        ib[n] = hi;
+        n++;
+    }
+}
+
+typedef struct slice_par {
+    const cylcell *g;
+    double px, py, d, R;
+    double wm, wh; /* w = z - cz = wm - wh cos(u), 0 <= u <= pi */
+} slice_par;
+
+static double slice_area(double u, void *vp)
+{
+    const slice_par *s = vp;
+    double w = s->wm - s->wh * cos(u);
+    double rho2 = (s->R - w) * (s->R + w);
+    if (!(rho2 > 0.0))
+        return 0.0;
+    return disk_cell_area(s->g, s->px, s->py, s->d, sqrt(rho2)) * s->wh * sin(u);
+}
+
+static void add_radius(double *v, int *n, double rho)
+{
+    if (rho > 0.0 && isfinite(rho))
+        v[(*n)++] = rho;
+}
+
+double overlap_sphere_cylcell(const double c[3], double R, double r0, double r1, double phi0,
+                              double phi1, double z0, double z1)
+{
+    if (isnan(c[0]) || isnan(c[1]) || isnan(c[2]) || isnan(R))
+        return NAN;
+    if (!(R > 0.0))
+        return 0.0;
+    cylcell g;
+    int st = cell_setup(&g, r0, r1, phi0, phi1, z0, z1);
+    if (st <= 0)
+        return st < 0 ? NAN : 0.0;
+    double cz = c[2];
+    double wlo = fmax(z0 - cz, -R), whi = fmin(z1 - cz, R);
+    if (!(wlo < whi))
+        return 0.0;
+    double px = c[0], py = c[1], d = hypot(px, py);
+    if (d - R >= g.r1 || d + R <= g.r0)
+        return 0.0;
+    /* drop the bounds that do not meet the ball */
+    if (g.r0 > 0.0 && d - R >= g.r0)
+        g.r0 = 0.0;
+    if (d + R <= g.r1)
+        g.r1 = INFINITY;
+    int rays, w = disk_wedge(&g, px, py, d, R, &rays);
+    if (w == W_OUTSIDE)
+        return 0.0;
+    if (w == W_INSIDE && !g.full) {
+        g.full = 1;
+        g.wide = 1;
+        g.dphi = TWO_PI;
+    }
+    int radial = g.r0 > 0.0 || isfinite(g.r1);
+    if (!radial && g.full) {
+        if (wlo == -R && whi == R)
+            return FOUR_THIRDS_PI * R * R * R;
+        return zone(R, wlo, whi);
+    }
+    /* one ray of a wedge and a ball away from the axis: a half-space cut */
+    if (!radial && (rays == 1 || rays == 2) && d > R) {
+        const double *e = rays == 1 ? g.e0 : g.e1;
+        /* inward normal of the ray's plane: e rotated by +90 (ray 0) or -90 */
+        double dist = rays == 1 ? cross2(e, px, py) : -cross2(e, px, py);
+        double cc[3] = {dist, 0.0, 0.0};
+        double lo[3] = {0.0, -INFINITY, wlo}, hi[3] = {INFINITY, INFINITY, whi};
+        return overlap_sphere_box(cc, R, lo, hi);
+    }
+    if (isinf(g.r1))
+        g.r1 = d + 2.0 * R; /* same cell as far as the ball sees */
+
+    /* Disk radii at which the cross-section changes shape ("Quadrature"). */
+    double rk[16];
+    int nk = 0;
+    double rb[2] = {g.r1, g.r0};
+    for (int k = 0; k < (g.r0 > 0.0 ? 2 : 1); k++) {
+        if (in_wedge(&g, px, py))
+            add_radius(rk, &nk, fabs(d - rb[k]));
+        if (in_wedge(&g, -px, -py))
+            add_radius(rk, &nk, d + rb[k]);
+    }
+    if (!g.full) {
+        const double *e[2] = {g.e0, g.e1};
+        for (int k = 0; k < 2; k++) {
+            double s = e[k][0] * px + e[k][1] * py, cc = cross2(e[k], px, py);
+            if (s >= g.r0 && s <= g.r1)
+                add_radius(rk, &nk, fabs(cc));
+            add_radius(rk, &nk, hypot(g.r1 - s, cc));
+            add_radius(rk, &nk, g.r0 > 0.0 ? hypot(g.r0 - s, cc) : d);
+        }
+    }
+    double wb[34];
+    int nw = 0;
+    wb[nw++] = wlo;
+    wb[nw++] = whi;
+    for (int k = 0; k < nk; k++) {
+        if (rk[k] >= R)
+            continue;
+        double h = sqrt((R - rk[k]) * (R + rk[k]));
+        if (-h > wlo && -h < whi)
+            wb[nw++] = -h;
+        if (h > wlo && h < whi)
+            wb[nw++] = h;
+    }
+    sort_doubles(wb, nw);
+
+    slice_par sp = {&g, px, py, d, R, 0.0, 0.0};
+    gsl_function f = {slice_area, &sp};
+    double vol = 0.0, epsabs = 1e-14 * R * R * R;
+    for (int i = 0; i + 1 < nw; i++) {
+        double wa = wb[i], wz = wb[i + 1];
+        if (!(wz > wa))
+            continue;
+        double wm = 0.5 * (wa + wz);
+        double rho = sqrt((R - wm) * (R + wm));
+        switch (disk_cell_kind(&g, px, py, d, rho)) {
+        case K_EMPTY:
+            break;
+        case K_DISK_IN:
+            vol += zone(R, wa, wz);
+            break;
+        case K_CELL_IN:
+            vol += 0.5 * g.dphi * (g.r1 - g.r0) * (g.r1 + g.r0) * (wz - wa);
+            break;
+        default:
+            /* w = wm - wh cos(u) clusters the nodes at both ends, where the
+             * area behaves like a power 1/2 or 3/2 of the distance */
+            sp.wm = wm;
+            sp.wh = 0.5 * (wz - wa);
+            vol += adapt_qk21(&f, 0.0, PI, epsabs, 1e-12);
+            break;
+        }
+    }
+    double V = FOUR_THIRDS_PI * R * R * R;
+    return vol > 0.0 ? fmin(vol, V) : 0.0;
+}
+
+/* ---- segment and cylindrical cell ----------------------------------------- */
+
+/* The fraction of a small ball about (x, y, z) inside the cell. */
+static double cell_density(const cylcell *g, double x, double y, double z)
+{
+    double w = 1.0;
+    if (z < g->z0 || z > g->z1)
+        return 0.0;
+    if (z == g->z0 || z == g->z1)
+        w *= 0.5;
+    double q = x * x + y * y;
+    if (q > g->r1 * g->r1 || q < g->r0 * g->r0)
+        return 0.0;
+    if (q == g->r1 * g->r1 || (g->r0 > 0.0 && q == g->r0 * g->r0))
+        w *= 0.5;
+    if (g->full)
+        return w;
+    if (x == 0.0 && y == 0.0)
+        return w * g->dphi / TWO_PI;
+    double s0 = cross2(g->e0, x, y), s1 = -cross2(g->e1, x, y);
+    if ((s0 == 0.0 && g->e0[0] * x + g->e0[1] * y > 0.0) ||
+        (s1 == 0.0 && g->e1[0] * x + g->e1[1] * y > 0.0))
+        return 0.5 * w;
+    return in_wedge(g, x, y) ? w : 0.0;
+}
+
+static void add_param(double *t, int *n, double v)
+{
+    if (v > 0.0 && v < 1.0)
+        t[(*n)++] = v;
+}
+
+double segment_fraction_cylcell(const double a[3], const double b[3], double r0, double r1,
+                                double phi0, double phi1, double z0, double z1)
+{
+    for (int i = 0; i < 3; i++)
+        if (isnan(a[i]) || isnan(b[i]))
+            return NAN;
+    cylcell g;
+    int st = cell_setup(&g, r0, r1, phi0, phi1, z0, z1);
+    if (st <= 0)
+        return st < 0 ? NAN : 0.0;
+    double dx = b[0] - a[0], dy = b[1] - a[1], dz = b[2] - a[2];
+    double t[12];
+    int n = 0;
+    t[n++] = 0.0;
+    if (dz != 0.0) {
+        add_param(t, &n, (z0 - a[2]) / dz);
+        add_param(t, &n, (z1 - a[2]) / dz);
+    }
+    double A = dx * dx + dy * dy;
+    if (A > 0.0) {
+        double B = a[0] * dx + a[1] * dy, C = a[0] * a[0] + a[1] * a[1];
+        add_param(t, &n, -B / A); /* closest to the axis (crossing it, maybe) */
+        double rr[2] = {g.r1, g.r0};
+        for (int k = 0; k < 2; k++) {
+            if (!(rr[k] > 0.0) || !isfinite(rr[k]))
+                continue;
+            double cr = C - rr[k] * rr[k], disc = B * B - A * cr;
+            if (!(disc > 0.0))
+                continue;
+            double q = -(B + copysign(sqrt(disc), B));
+            if (q != 0.0) {
+                add_param(t, &n, q / A);
+                add_param(t, &n, cr / q);
+            }
+        }
+        if (!g.full) {
+            const double *e[2] = {g.e0, g.e1};
+            for (int k = 0; k < 2; k++) {
+                double den = cross2(e[k], dx, dy);
+                if (den != 0.0)
+                    add_param(t, &n, -cross2(e[k], a[0], a[1]) / den);
+            }
+        }
+    }
+    t[n++] = 1.0;
+    sort_doubles(t, n);
+    double f = 0.0;
+    for (int i = 0; i + 1 < n; i++) {
+        if (!(t[i + 1] > t[i]))
+            continue;
+        double tm = 0.5 * (t[i] + t[i + 1]);
+        double w = cell_density(&g, a[0] + tm * dx, a[1] + tm * dy, a[2] + tm * dz);
+        f += w * (t[i + 1] - t[i]);
+    }
+    return f;
+}
