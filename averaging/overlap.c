@@ -5,6 +5,7 @@
 
 #include "overlap.h"
 
+#include <float.h>
 #include <math.h>
 
 #include <gsl/gsl_integration.h>
@@ -221,7 +222,8 @@ static int cell_setup(cylcell *g, double r0, double r1, double phi0, double phi1
     g->z0 = z0;
     g->z1 = z1;
     double dphi = phi1 - phi0;
-    if (dphi >= TWO_PI) {
+    /* the full circle, also when phi0 + 2 pi was rounded down */
+    if (dphi >= TWO_PI * (1.0 - 4.0 * DBL_EPSILON)) {
         g->full = 1;
         g->wide = 1;
         g->dphi = TWO_PI;
