@@ -120,12 +120,21 @@ int mimas_grid_parse(mimas_grid *g, const char *spec, const char *axis, mimas_er
 void mimas_grid_fit_box(mimas_grid *g, const mimas_box *b)
 {
     if (g->kind == MIMAS_GRID_CARTESIAN) {
-        /* the bounding box of a tilted box */
+        /* a periodic direction spans lo..hi: with the tilts, the orthogonal
+         * box lo..hi is still a fundamental domain of the periodic lattice
+         * (subtract multiples of c, then b, then a), so periodic images fill
+         * it exactly once; a non-periodic direction spans the tilted box's
+         * bounding box */
         double e[3][3];
         mimas_box_edges(b, e);
         for (int d = 0; d < 3; d++) {
             if (g->gridded[d])
                 continue;
+            if (b->periodic[d]) {
+                g->lo[d] = b->lo[d];
+                g->hi[d] = b->hi[d];
+                continue;
+            }
             double lo = b->lo[d], hi = b->lo[d];
             for (int k = 1; k < 8; k++) {
                 double x = b->lo[d];

@@ -289,6 +289,22 @@ static double bms(double x)
     return x - sin(x);
 }
 
+/* sorts v and carries t along */
+static void sort_pairs(double *v, double *t, int n)
+{
+    for (int i = 1; i < n; i++) {
+        double x = v[i], y = t[i];
+        int j = i - 1;
+        while (j >= 0 && v[j] > x) {
+            v[j + 1] = v[j];
+            t[j + 1] = t[j];
+            j--;
+        }
+        v[j + 1] = x;
+        t[j + 1] = y;
+    }
+}
+
 static void sort_doubles(double *v, int n)
 {
     for (int i = 1; i < n; i++) {
@@ -303,124 +319,177 @@ static void sort_doubles(double *v, int n)
 }
 
 /* Where the circle of radius rho about p (|p| = d > 0) meets the circle of
- * radius r about the axis: the intersection points are X = a u +- h v
- * (u = p/d, v = u rotated by +90 degrees).  Returns 0 when they do not cross.
- * *beta: angle of X seen from the axis, *tau: seen from p, both from u. */
-static int circles_meet(double d, double rho, double r, double *beta, double *tau)
+ * radius r about the axis, as angles in [0, pi] from the direction u = p/d:
+ * the points p + rho (cos tau, sin tau) (in the frame of u) with
+ * |tau| >= *tau lie inside the circle r, the points r (cos beta, sin beta)
+ * with |beta| <= *beta inside the disk.  The crossing points are
+ * X = a u +- h v (v = u turned by 90 degrees); r - a and h are computed
+ * without cancellation. */
+static void circle_parts(double d, double rho, double r, double *tau, double *beta)
 {
     double rmd = r - d;
     double rma = (rho - rmd) * (rho + rmd) / (2.0 * d); /* r - a */
-    if (!(rma > 0.0 && rma < 2.0 * r))
-        return 0;
-    double h = sqrt(rma * (2.0 * r - rma));
-    *beta = atan2(h, r - rma);
-    *tau = atan2(h, rmd - rma);
-    return 1;
+    if (rma > 0.0 && rma < 2.0 * r) {
+        double h = sqrt(rma * (2.0 * r - rma));
+        *beta = atan2(h, r - rma);
+        *tau = atan2(h, rmd - rma);
+    } else if (rma <= 0.0) { /* the disk inside (d < r) or outside the circle */
+        *tau = d < r ? 0.0 : PI;
+        *beta = 0.0;
+    } else { /* the disk contains the circle */
+        *tau = PI;
+        *beta = PI;
+    }
+}
+
+/* Area of the disk |x - p| <= rho intersected with the annulus (no wedge):
+ * the boundary integral below with the arcs found directly. */
+static double disk_annulus_area(double d, double rho, double r0, double r1)
+{
+    double t1, b1, t0 = PI, b0 = 0.0;
+    circle_parts(d, rho, r1, &t1, &b1);
+    if (r0 > 0.0)
+        circle_parts(d, rho, r0, &t0, &b0);
+    double sum = 2.0 * rho * rho * fmax(0.0, t0 - t1);
+    sum += 2.0 * (r1 * (r1 - d) * b1 + r1 * d * bms(b1));
+    if (r0 > 0.0)
+        sum -= 2.0 * (r0 * (r0 - d) * b0 + r0 * d * bms(b0));
+    return 0.5 * sum;
+}
+
+/* A disk centre p seen from the cell: what does not depend on the radius. */
+typedef struct disk_view {
+    const cylcell *g;
+    double px, py, d;
+    double ux, uy;            /* p / d */
+    double s[2], cc[2];       /* ray k: p = s[k] e_k + cc[k] (e_k turned by +90 degrees) */
+    double eb[2];             /* direction of ray k seen from the axis, from u */
+    double ex[2], ey[2];      /* ray k's unit vector in the frame (u, v) */
+} disk_view;
+
+static void view_setup(disk_view *v, const cylcell *g, double px, double py, double d)
+{
+    v->g = g;
+    v->px = px;
+    v->py = py;
+    v->d = d;
+    v->ux = d > 0.0 ? px / d : 1.0;
+    v->uy = d > 0.0 ? py / d : 0.0;
+    const double *e[2] = {g->e0, g->e1};
+    for (int k = 0; k < 2; k++) {
+        v->s[k] = e[k][0] * px + e[k][1] * py;
+        v->cc[k] = cross2(e[k], px, py);
+        v->ex[k] = v->ux * e[k][0] + v->uy * e[k][1];
+        v->ey[k] = v->ux * e[k][1] - v->uy * e[k][0];
+        v->eb[k] = atan2(v->ey[k], v->ex[k]);
+    }
+}
+
+/* Is the direction at angle beta from u inside the wedge? */
+static int beta_in_wedge(const disk_view *v, double beta)
+{
+    double rel = beta - v->eb[0];
+    if (rel < 0.0)
+        rel += TWO_PI;
+    if (rel >= TWO_PI)
+        rel -= TWO_PI;
+    return rel <= v->g->dphi;
 }
 
 /* Area of the disk |x - p| <= rho intersected with the annular sector:
  * Green's theorem, area = 1/2 closed integral of (x - p) x dx along the
- * boundary of the intersection ("Disk and annular sector"). */
-static double disk_cell_area(const cylcell *g, double px, double py, double d, double rho)
+ * boundary of the intersection, taken about p so that no large terms cancel
+ * ("Disk and annular sector" in docs/overlap.md).  The boundary consists of
+ * arcs of the disk's circle (contributing rho^2 dtau), arcs of the circles
+ * r1 and r0 (r (r - d) dbeta + r d d(beta - sin beta)) and pieces of the two
+ * rays (length times the distance of p from the ray). */
+static double disk_cell_area(const disk_view *v, double rho)
 {
+    const cylcell *g = v->g;
+    double r0 = g->r0, r1 = g->r1, d = v->d;
     if (!(rho > 0.0))
         return 0.0;
-    double r0 = g->r0, r1 = g->r1;
+    double cap = PI * rho * rho;
+    if (isfinite(r1))
+        cap = fmin(cap, 0.5 * g->dphi * (r1 - r0) * (r1 + r0));
     if (d == 0.0) {
         double ro = fmin(rho, r1);
         return ro > r0 ? 0.5 * g->dphi * (ro - r0) * (ro + r0) : 0.0;
     }
-    double ux = px / d, uy = py / d; /* u, and v = (-uy, ux) */
-    double rr[2] = {r1, r0};
-    int nr = r0 > 0.0 ? 2 : 1;
-    double tau[12], beta[2][8];
-    int ntau = 0, nbeta[2] = {0, 0};
-    for (int k = 0; k < nr; k++) {
-        double b, t;
-        if (circles_meet(d, rho, rr[k], &b, &t)) {
-            beta[k][nbeta[k]++] = b;
-            beta[k][nbeta[k]++] = -b;
-            tau[ntau++] = t;
-            tau[ntau++] = -t;
-        }
+    if (g->full) {
+        double area = disk_annulus_area(d, rho, r0, r1);
+        return area > 0.0 ? fmin(area, cap) : 0.0;
     }
+    double t1, b1, t0 = PI, b0 = 0.0;
+    circle_parts(d, rho, r1, &t1, &b1);
+    if (r0 > 0.0)
+        circle_parts(d, rho, r0, &t0, &b0);
+    double tau[8];
+    int nt = 0;
     double sum = 0.0;
-    if (!g->full) {
-        const double *e[2] = {g->e0, g->e1};
-        for (int k = 0; k < 2; k++) {
-            double ex = e[k][0], ey = e[k][1];
-            /* p = s e + cc w with w = e rotated by +90 degrees */
-            double s = ex * px + ey * py, cc = cross2(e[k], px, py);
-            /* the ray's direction seen from the axis, relative to u */
-            double eb = atan2(ux * ey - uy * ex, ux * ex + uy * ey);
-            for (int m = 0; m < nr; m++)
-                beta[m][nbeta[m]++] = eb;
-            if (fabs(cc) < rho) {
-                double hh = sqrt((rho - cc) * (rho + cc));
-                /* X - p = +-hh e - cc w, w = (-ey, ex) */
-                for (int sg = -1; sg <= 1; sg += 2) {
-                    double vx = sg * hh * ex + cc * ey, vy = sg * hh * ey - cc * ex;
-                    tau[ntau++] = atan2(ux * vy - uy * vx, ux * vx + uy * vy);
-                }
-                /* the part of the ray segment r0 <= s <= r1 inside the disk:
-                 * ray 0 runs outwards, ray 1 inwards along the boundary */
-                double sa = fmax(r0, s - hh), sb = fmin(r1, s + hh);
-                if (sb > sa)
-                    sum += (k == 0 ? 1.0 : -1.0) * (sb - sa) * cc;
-            }
-        }
+    for (int k = 0; k < 2; k++) {
+        double cc = v->cc[k], s = v->s[k];
+        if (!(fabs(cc) < rho))
+            continue;
+        double hh = sqrt((rho - cc) * (rho + cc));
+        /* the ray's line crosses the circle at s +- hh along the ray:
+         * X - p = +-hh e - cc w, in the frame of u */
+        double ex = v->ex[k], ey = v->ey[k];
+        tau[nt++] = atan2(hh * ey - cc * ex, hh * ex + cc * ey);
+        tau[nt++] = atan2(-hh * ey - cc * ex, -hh * ex + cc * ey);
+        /* the ray segment r0 <= s <= r1 inside the disk; ray 0 runs outwards
+         * along the boundary, ray 1 inwards */
+        double sa = fmax(r0, s - hh), sb = fmin(r1, s + hh);
+        if (sb > sa)
+            sum += (k == 0 ? 1.0 : -1.0) * (sb - sa) * cc;
     }
+    if (t1 > 0.0 && t1 < PI)
+        tau[nt++] = t1, tau[nt++] = -t1;
+    if (t0 > 0.0 && t0 < PI)
+        tau[nt++] = t0, tau[nt++] = -t0;
     /* arcs of the disk's circle inside the cell */
-    sort_doubles(tau, ntau);
+    sort_doubles(tau, nt);
     double prev = -PI, arcs = 0.0;
-    for (int i = 0; i <= ntau; i++) {
-        double next = i < ntau ? tau[i] : PI;
+    for (int i = 0; i <= nt; i++) {
+        double next = i < nt ? tau[i] : PI;
         if (next > prev) {
-            double tm = 0.5 * (prev + next), ct = cos(tm), st = sin(tm);
-            int ok = 1;
-            /* |q|^2 - r^2 with q = p + rho (cos tm u + sin tm v) */
-            double q2 = rho * rho + 2.0 * rho * d * ct;
-            if ((d - r1) * (d + r1) + q2 > 0.0)
-                ok = 0;
-            else if (r0 > 0.0 && (d - r0) * (d + r0) + q2 < 0.0)
-                ok = 0;
-            else if (!g->full) {
-                double qx = px + rho * (ct * ux - st * uy), qy = py + rho * (ct * uy + st * ux);
-                ok = in_wedge(g, qx, qy);
+            double tm = 0.5 * (prev + next), am = fabs(tm);
+            if (am >= t1 && am <= t0) {
+                double ct = cos(tm), st = sin(tm);
+                double qx = v->px + rho * (ct * v->ux - st * v->uy);
+                double qy = v->py + rho * (ct * v->uy + st * v->ux);
+                if (in_wedge(g, qx, qy))
+                    arcs += next - prev;
             }
-            if (ok)
-                arcs += next - prev;
         }
         prev = next;
     }
     sum += rho * rho * arcs;
     /* arcs of the circles r1 (counterclockwise) and r0 (clockwise) inside the
      * disk and the wedge */
-    for (int k = 0; k < nr; k++) {
-        double r = rr[k], *bk = beta[k];
-        int nb = nbeta[k];
+    for (int k = 0; k < (r0 > 0.0 ? 2 : 1); k++) {
+        double r = k == 0 ? r1 : r0, b = k == 0 ? b1 : b0;
+        if (!(b > 0.0))
+            continue;
+        double bk[4] = {v->eb[0], v->eb[1]};
+        int nb = 2;
+        if (b < PI)
+            bk[nb++] = b, bk[nb++] = -b;
         sort_doubles(bk, nb);
-        double bprev = -PI, part = 0.0;
+        double bprev = -PI, fprev = bms(-PI), part = 0.0;
         for (int i = 0; i <= nb; i++) {
             double next = i < nb ? bk[i] : PI;
             if (next > bprev) {
-                double bm = 0.5 * (bprev + next), sh = sin(0.5 * bm);
-                int ok = (r - d) * (r - d) + 4.0 * r * d * sh * sh <= rho * rho;
-                if (ok && !g->full) {
-                    double cb = cos(bm), sb = sin(bm);
-                    ok = in_wedge(g, cb * ux - sb * uy, cb * uy + sb * ux);
-                }
-                if (ok)
-                    part += r * (r - d) * (next - bprev) + r * d * (bms(next) - bms(bprev));
+                double fnext = bms(next), bm = 0.5 * (bprev + next);
+                if (fabs(bm) <= b && beta_in_wedge(v, bm))
+                    part += r * (r - d) * (next - bprev) + r * d * (fnext - fprev);
+                fprev = fnext;
             }
             bprev = next;
         }
         sum += k == 0 ? part : -part;
     }
     double area = 0.5 * sum;
-    double cap = PI * rho * rho;
-    if (isfinite(r1))
-        cap = fmin(cap, 0.5 * g->dphi * (r1 - r0) * (r1 + r0));
     return area > 0.0 ? fmin(area, cap) : 0.0;
 }
 
@@ -461,57 +530,75 @@ static double zone(double R, double wa, double wb)
     return PI * (wb - wa) * (pa * ma + pb * mb + 0.5 * (pa * mb + ma * pb)) / 3.0;
 }
 
-/* ---- adaptive quadrature: GSL's 21-point Gauss-Kronrod rule, bisecting the
- * interval with the largest error estimate (QUADPACK QAG without the
- * workspace and without GSL's error handler, which aborts by default) ---- */
+/* ---- adaptive quadrature --------------------------------------------------- */
 
-#define QUAD_LIMIT 64
+typedef struct slice_par {
+    const disk_view *v;
+    double R;
+    double tm, th; /* the slice at z = cz + R sin(theta), theta = tm - th cos(u) */
+} slice_par;
 
-static double adapt_qk21(const gsl_function *f, double a, double b, double epsabs, double epsrel)
+/* The integrand over u in [0, pi]: area of the slice times dz/du. */
+static double slice_area(double u, void *vp)
 {
-    double ia[QUAD_LIMIT], ib[QUAD_LIMIT], ir[QUAD_LIMIT], ie[QUAD_LIMIT];
+    const slice_par *s = vp;
+    double th = s->tm - s->th * cos(u);
+    double rho = s->R * cos(th);
+    if (!(rho > 0.0))
+        return 0.0;
+    return disk_cell_area(s->v, rho) * rho * s->th * sin(u); /* dz = rho dtheta */
+}
+
+/* One interval of the global adaptive scheme: u in [a, b] of the latitude
+ * band theta = tm - th cos(u). */
+typedef struct quad_piece {
+    double tm, th, a, b, res, err;
+} quad_piece;
+
+static void piece_eval(quad_piece *q, slice_par *sp, const gsl_function *f)
+{
     double resabs, resasc;
-    gsl_integration_qk21(f, a, b, &ir[0], &ie[0], &resabs, &resasc);
-    ia[0] = a;
-    ib[0] = b;
-    int n = 1;
+    sp->tm = q->tm;
+    sp->th = q->th;
+    gsl_integration_qk21(f, q->a, q->b, &q->res, &q->err, &resabs, &resasc);
+}
+
+#define QUAD_LIMIT 96
+
+/* QUADPACK's QAGP strategy with GSL's 21-point Gauss-Kronrod rule: every
+ * band is one interval to start with, then the interval with the largest
+ * error estimate is bisected until the total error estimate is below
+ * max(epsabs, epsrel |total|), total = known + the integrals.  (Not
+ * gsl_integration_qagp itself: it needs a workspace and reports failure
+ * through GSL's error handler, which aborts by default.) */
+static double integrate_bands(quad_piece *q, int n, slice_par *sp, double known, double epsabs,
+                              double epsrel)
+{
+    gsl_function f = {slice_area, sp};
+    for (int i = 0; i < n; i++)
+        piece_eval(&q[i], sp, &f);
     for (;;) {
-        double tot = 0.0, err = 0.0;
+        double tot = known, err = 0.0;
         int worst = 0;
         for (int i = 0; i < n; i++) {
-            tot += ir[i];
-            err += ie[i];
-            if (ie[i] > ie[worst])
+            tot += q[i].res;
+            err += q[i].err;
+            if (q[i].err > q[worst].err)
                 worst = i;
         }
         if (err <= fmax(epsabs, epsrel * fabs(tot)) || n >= QUAD_LIMIT)
             return tot;
-        double lo = ia[worst], hi = ib[worst], mid = 0.5 * (lo + hi);
-        if (!(mid > lo && mid < hi))
+        quad_piece *w = &q[worst];
+        double mid = 0.5 * (w->a + w->b);
+        if (!(mid > w->a && mid < w->b))
             return tot;
-        gsl_integration_qk21(f, lo, mid, &ir[worst], &ie[worst], &resabs, &resasc);
-        ib[worst] = mid;
-        gsl_integration_qk21(f, mid, hi, &ir[n], &ie[n], &resabs, &resasc);
-        ia[n] = mid;
-        ib[n] = hi;
+        q[n] = *w;
+        q[n].a = mid;
+        w->b = mid;
+        piece_eval(w, sp, &f);
+        piece_eval(&q[n], sp, &f);
         n++;
     }
-}
-
-typedef struct slice_par {
-    const cylcell *g;
-    double px, py, d, R;
-    double wm, wh; /* w = z - cz = wm - wh cos(u), 0 <= u <= pi */
-} slice_par;
-
-static double slice_area(double u, void *vp)
-{
-    const slice_par *s = vp;
-    double w = s->wm - s->wh * cos(u);
-    double rho2 = (s->R - w) * (s->R + w);
-    if (!(rho2 > 0.0))
-        return 0.0;
-    return disk_cell_area(s->g, s->px, s->py, s->d, sqrt(rho2)) * s->wh * sin(u);
 }
 
 static void add_radius(double *v, int *n, double rho)
@@ -589,31 +676,36 @@ double overlap_sphere_cylcell(const double c[3], double R, double r0, double r1,
             add_radius(rk, &nk, g.r0 > 0.0 ? hypot(g.r0 - s, cc) : d);
         }
     }
-    double wb[34];
+    /* the slices in between: by the latitude theta (z = cz + R sin(theta),
+     * rho = R cos(theta)), in which the area is analytic between the events
+     * and at the poles */
+    double wb[34], tb[34];
     int nw = 0;
-    wb[nw++] = wlo;
-    wb[nw++] = whi;
+    wb[nw] = wlo, tb[nw++] = atan2(wlo, sqrt((R - wlo) * (R + wlo)));
+    wb[nw] = whi, tb[nw++] = atan2(whi, sqrt((R - whi) * (R + whi)));
     for (int k = 0; k < nk; k++) {
         if (rk[k] >= R)
             continue;
-        double h = sqrt((R - rk[k]) * (R + rk[k]));
+        double h = sqrt((R - rk[k]) * (R + rk[k])), t = atan2(h, rk[k]);
         if (-h > wlo && -h < whi)
-            wb[nw++] = -h;
+            wb[nw] = -h, tb[nw++] = -t;
         if (h > wlo && h < whi)
-            wb[nw++] = h;
+            wb[nw] = h, tb[nw++] = t;
     }
-    sort_doubles(wb, nw);
+    sort_pairs(wb, tb, nw);
 
-    slice_par sp = {&g, px, py, d, R, 0.0, 0.0};
-    gsl_function f = {slice_area, &sp};
-    double vol = 0.0, epsabs = 1e-14 * R * R * R;
+    disk_view view;
+    view_setup(&view, &g, px, py, d);
+    slice_par sp = {&view, R, 0.0, 0.0};
+    quad_piece bands[QUAD_LIMIT];
+    int nb = 0;
+    double vol = 0.0;
     for (int i = 0; i + 1 < nw; i++) {
         double wa = wb[i], wz = wb[i + 1];
         if (!(wz > wa))
             continue;
-        double wm = 0.5 * (wa + wz);
-        double rho = sqrt((R - wm) * (R + wm));
-        switch (disk_cell_kind(&g, px, py, d, rho)) {
+        double tm = 0.5 * (tb[i] + tb[i + 1]);
+        switch (disk_cell_kind(&g, px, py, d, R * cos(tm))) {
         case K_EMPTY:
             break;
         case K_DISK_IN:
@@ -623,14 +715,14 @@ double overlap_sphere_cylcell(const double c[3], double R, double r0, double r1,
             vol += 0.5 * g.dphi * (g.r1 - g.r0) * (g.r1 + g.r0) * (wz - wa);
             break;
         default:
-            /* w = wm - wh cos(u) clusters the nodes at both ends, where the
-             * area behaves like a power 1/2 or 3/2 of the distance */
-            sp.wm = wm;
-            sp.wh = 0.5 * (wz - wa);
-            vol += adapt_qk21(&f, 0.0, PI, epsabs, 1e-12);
+            /* theta = tm - th cos(u) clusters the nodes at both ends, where
+             * the area behaves like a power 1/2 or 3/2 of the distance */
+            bands[nb++] = (quad_piece){tm, 0.5 * (tb[i + 1] - tb[i]), 0.0, PI, 0.0, 0.0};
             break;
         }
     }
+    if (nb > 0)
+        vol = integrate_bands(bands, nb, &sp, vol, 1e-14 * R * R * R, 1e-12);
     double V = FOUR_THIRDS_PI * R * R * R;
     return vol > 0.0 ? fmin(vol, V) : 0.0;
 }

@@ -4,6 +4,7 @@
 
 #include "cli.h"
 
+extern const cli_command cmd_average;
 extern const cli_command cmd_convert;
 extern const cli_command cmd_info;
 

@@ -10,6 +10,7 @@
 static const cli_command *const commands[] = {
     &cmd_info,
     &cmd_convert,
+    &cmd_average,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 

@@ -9,6 +9,7 @@
 #include "native.h"
 #include "reader.h"
 #include "voro_cells.h"
+#include "average.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -89,11 +89,13 @@ static void test_none_and_tilted_box(void **state)
     mimas_grid g;
     mimas_error err;
     assert_int_equal(mimas_grid_parse(&g, "none", NULL, &err), MIMAS_OK);
-    mimas_box b = {{0, 0, 0}, {1, 2, 3}, 0.5, -0.25, 0, {1, 1, 1}};
+    mimas_box b = {{0, 0, 0}, {1, 2, 3}, 0.5, -0.25, 0, {0, 1, 1}};
     mimas_grid_fit_box(&g, &b);
-    /* the bounding box of the tilted box: x from -0.25 to 1.5 */
+    /* x is not periodic: the bounding box of the tilted box, -0.25 .. 1.5;
+     * y and z are: lo .. hi, a fundamental domain */
     assert_close(g.lo[0], -0.25, 0);
     assert_close(g.hi[0], 1.5, 0);
+    assert_true(g.lo[1] == 0 && g.hi[1] == 2 && g.hi[2] == 3);
     assert_int_equal(mimas_grid_cells(&g), 1);
 }
 

@@ -1,0 +1,388 @@
+#include <config.h>
+
+#include "average.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "deposit.h"
+#include "fields.h"
+
+struct mimas_average {
+    mimas_average_options opt;
+    mimas_grid grid;        /* fitted to the first frame */
+    size_t cells, frames;
+    double *sum;            /* cells x NSUMS, summed over frames */
+    double *frame_sum;      /* cells x NSUMS, this frame */
+    /* per-frame field statistics (Welford), cells x nfields each */
+    double *f_mean, *f_m2, *f_count;
+    double *scratch;        /* nfields */
+    /* per frame: particle selection and contact counts */
+    unsigned char *keep;
+    int *ncontacts;
+    size_t cap;
+};
+
+int mimas_average_create(mimas_average **out, const mimas_average_options *o, mimas_error *err)
+{
+    *out = NULL;
+    if (o->weight.kind == MIMAS_WEIGHT_GAUSS && o->grid.kind == MIMAS_GRID_CYLINDRICAL &&
+        !o->grid_none)
+        return mimas_error_set(err, MIMAS_EUSAGE, "gauss weights on cylindrical grids are not "
+                               "implemented yet: use bins or bins:center");
+    mimas_average *a = calloc(1, sizeof *a);
+    if (!a)
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    a->opt = *o;
+    a->grid = o->grid;
+    a->cells = o->grid_none ? 1 : mimas_grid_cells(&o->grid);
+    size_t nf = mimas_fields_count();
+    a->sum = calloc(a->cells * NSUMS, sizeof *a->sum);
+    a->frame_sum = calloc(a->cells * NSUMS, sizeof *a->frame_sum);
+    a->scratch = calloc(nf, sizeof *a->scratch);
+    int ok = a->sum && a->frame_sum && a->scratch;
+    if (ok && o->spread) {
+        a->f_mean = calloc(a->cells * nf, sizeof *a->f_mean);
+        a->f_m2 = calloc(a->cells * nf, sizeof *a->f_m2);
+        a->f_count = calloc(a->cells * nf, sizeof *a->f_count);
+        ok = a->f_mean && a->f_m2 && a->f_count;
+    }
+    if (!ok) {
+        mimas_average_free(a);
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for %zu cells", a->cells);
+    }
+    *out = a;
+    return MIMAS_OK;
+}
+
+void mimas_average_free(mimas_average *a)
+{
+    if (!a)
+        return;
+    free(a->sum);
+    free(a->frame_sum);
+    free(a->f_mean);
+    free(a->f_m2);
+    free(a->f_count);
+    free(a->scratch);
+    free(a->keep);
+    free(a->ncontacts);
+    free(a);
+}
+
+size_t mimas_average_frames(const mimas_average *a)
+{
+    return a->frames;
+}
+
+const mimas_grid *mimas_average_grid(const mimas_average *a)
+{
+    return &a->grid;
+}
+
+/* ---- the local basis: Cartesian, or (e_r, e_phi, e_z) at a point ---- */
+
+typedef struct basis {
+    int cyl;
+    double e[3][3]; /* rows: the local unit vectors in global coordinates */
+} basis;
+
+static void basis_at(const mimas_grid *g, const double x[3], basis *B)
+{
+    B->cyl = g->kind == MIMAS_GRID_CYLINDRICAL;
+    if (!B->cyl)
+        return;
+    double a[3];
+    mimas_grid_to_axis(g, x, a);
+    double r = hypot(a[0], a[1]);
+    double c = r > 0 ? a[0] / r : 1.0, s = r > 0 ? a[1] / r : 0.0;
+    for (int d = 0; d < 3; d++) {
+        B->e[0][d] = c * g->ex[d] + s * g->ey[d];
+        B->e[1][d] = -s * g->ex[d] + c * g->ey[d];
+        B->e[2][d] = g->ez[d];
+    }
+}
+
+static void to_local(const basis *B, const double v[3], double out[3])
+{
+    if (!B->cyl) {
+        memcpy(out, v, 3 * sizeof *out);
+        return;
+    }
+    for (int k = 0; k < 3; k++)
+        out[k] = B->e[k][0] * v[0] + B->e[k][1] * v[1] + B->e[k][2] * v[2];
+}
+
+/* ---- deposit callbacks ---- */
+
+typedef struct particle_ctx {
+    double *S;
+    double m, vol, diam, c;   /* c: contact count */
+    double v[3];
+} particle_ctx;
+
+static void add_particle(void *user, size_t cell, double w)
+{
+    particle_ctx *p = user;
+    double *S = p->S + cell * NSUMS;
+    S[S_N] += w;
+    S[S_M] += p->m * w;
+    S[S_V] += p->vol * w;
+    S[S_D] += p->diam * w;
+    S[S_Z] += p->c * w;
+    if (p->c >= 2) {
+        S[S_ZN] += p->c * w;
+        S[S_NN] += w;
+    }
+    for (int a = 0; a < 3; a++) {
+        S[S_P + a] += p->m * p->v[a] * w;
+        for (int b = 0; b < 3; b++)
+            S[S_K + 3 * a + b] += p->m * p->v[a] * p->v[b] * w;
+    }
+}
+
+typedef struct contact_ctx {
+    double *S;
+    double fb[9], nn[9];   /* f (x) b and n (x) n in the local basis */
+} contact_ctx;
+
+static void add_contact(void *user, size_t cell, double w)
+{
+    contact_ctx *c = user;
+    double *S = c->S + cell * NSUMS;
+    for (int k = 0; k < 9; k++) {
+        S[S_C + k] += c->fb[k] * w;
+        S[S_F + k] += c->nn[k] * w;
+    }
+}
+
+typedef struct wall_ctx {
+    double *S;
+    double f[3];
+} wall_ctx;
+
+static void add_wall_force(void *user, size_t cell, double w)
+{
+    wall_ctx *c = user;
+    for (int k = 0; k < 3; k++)
+        c->S[cell * NSUMS + S_W + k] += c->f[k] * w;
+}
+
+/* One contact's stress and fabric: f acting on the particle at the end of
+ * branch b, the segment from `from` to from + b. */
+static void deposit_branch(const mimas_deposit *dp, const mimas_grid *g, double *S,
+                           const double from[3], const double b[3], const double f[3],
+                           const double at[3])
+{
+    basis B;
+    basis_at(g, at, &B);
+    double fl[3], bl[3];
+    to_local(&B, f, fl);
+    to_local(&B, b, bl);
+    double len = sqrt(bl[0] * bl[0] + bl[1] * bl[1] + bl[2] * bl[2]);
+    contact_ctx c;
+    c.S = S;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            c.fb[3 * i + j] = fl[i] * bl[j];
+            c.nn[3 * i + j] = len > 0 ? bl[i] * bl[j] / (len * len) : 0.0;
+        }
+    double to[3] = {from[0] + b[0], from[1] + b[1], from[2] + b[2]};
+    mimas_deposit_segment(dp, from, to, add_contact, &c);
+}
+
+static int selected(const mimas_average_options *o, const mimas_particles *p, size_t k)
+{
+    if (!o->ntypes)
+        return 1;
+    int32_t t = (p->present & MIMAS_P_TYPE) ? p->type[k] : 1;
+    int listed = 0;
+    for (size_t m = 0; m < o->ntypes; m++)
+        listed |= o->types[m] == t;
+    return o->exclude ? !listed : listed;
+}
+
+static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
+{
+    const mimas_particles *p = &f->particles;
+    int rc = mimas_table_require(p, &mimas_particles_desc,
+                                 MIMAS_P_RADIUS | MIMAS_P_MASS | MIMAS_P_VEL, err);
+    if (rc) {
+        if (!(p->present & MIMAS_P_MASS))
+            mimas_error_prefix(err, "%s", "give the particle density with --density");
+        return rc;
+    }
+    if (f->has_contacts)
+        rc = mimas_table_require(&f->contacts, &mimas_contacts_desc, MIMAS_C_FORCE, err);
+    if (!rc && f->has_walls)
+        rc = mimas_table_require(&f->walls, &mimas_walls_desc, MIMAS_W_FORCE | MIMAS_W_POINT,
+                                 err);
+    if (rc)
+        return rc;
+    if (p->n > a->cap) {
+        unsigned char *k = realloc(a->keep, p->n);
+        int *n = realloc(a->ncontacts, p->n * sizeof *n);
+        if (k)
+            a->keep = k;
+        if (n)
+            a->ncontacts = n;
+        if (!k || !n)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        a->cap = p->n;
+    }
+    for (size_t k = 0; k < p->n; k++) {
+        a->keep[k] = (unsigned char)selected(&a->opt, p, k);
+        a->ncontacts[k] = 0;
+    }
+    const mimas_contacts *c = &f->contacts;
+    for (size_t k = 0; f->has_contacts && k < c->n; k++)
+        if (a->keep[c->i[k]] && a->keep[c->j[k]]) {
+            a->ncontacts[c->i[k]]++;
+            a->ncontacts[c->j[k]]++;
+        }
+    return MIMAS_OK;
+}
+
+/* The contact point of a contact whose other side was excluded (a glued
+ * wall particle): the dump's, or c = r_i - (R_i - delta/2) n (PHYSICS 2). */
+static void contact_point(const mimas_frame *f, size_t k, size_t i, size_t j, double c[3])
+{
+    const mimas_particles *p = &f->particles;
+    if (f->contacts.present & MIMAS_C_POINT) {
+        memcpy(c, f->contacts.point[k], 3 * sizeof *c);
+        return;
+    }
+    double d[3] = {p->pos[i][0] - p->pos[j][0], p->pos[i][1] - p->pos[j][1],
+                   p->pos[i][2] - p->pos[j][2]};
+    mimas_box_min_image(&f->box, d);
+    double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    double delta = p->radius[i] + p->radius[j] - r;
+    double s = r > 0 ? (p->radius[i] - 0.5 * delta) / r : 0.0;
+    for (int m = 0; m < 3; m++)
+        c[m] = p->pos[i][m] - s * d[m];
+}
+
+int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
+{
+    int rc = prepare(a, f, err);
+    if (rc)
+        return rc;
+    mimas_grid g = a->opt.grid;
+    mimas_grid_fit_box(&g, &f->box);
+    if (a->frames == 0)
+        a->grid = g;
+    mimas_deposit dp;
+    mimas_deposit_init(&dp, &g, &a->opt.weight, &f->box, a->opt.grid_none);
+    double *S = a->frame_sum;
+    memset(S, 0, a->cells * NSUMS * sizeof *S);
+    const mimas_particles *p = &f->particles;
+    for (size_t k = 0; k < p->n; k++) {
+        if (!a->keep[k])
+            continue;
+        particle_ctx pc = {S, p->mass[k], 4.0 / 3.0 * M_PI * pow(p->radius[k], 3),
+                           2.0 * p->radius[k], (double)a->ncontacts[k], {0, 0, 0}};
+        basis B;
+        basis_at(&g, p->pos[k], &B);
+        to_local(&B, p->vel[k], pc.v);
+        mimas_deposit_sphere(&dp, p->pos[k], p->radius[k], add_particle, &pc);
+    }
+    const mimas_contacts *c = &f->contacts;
+    for (size_t k = 0; f->has_contacts && k < c->n; k++) {
+        size_t i = c->i[k], j = c->j[k];
+        if (!a->keep[i] && !a->keep[j])
+            continue;
+        if (a->keep[i] && a->keep[j]) {
+            /* f_ij (x) (r_i - r_j), the branch by the minimum image (PHYSICS 1) */
+            double b[3] = {p->pos[i][0] - p->pos[j][0], p->pos[i][1] - p->pos[j][1],
+                           p->pos[i][2] - p->pos[j][2]};
+            mimas_box_min_image(&f->box, b);
+            const double *at = (c->present & MIMAS_C_POINT) ? c->point[k] : p->pos[i];
+            deposit_branch(&dp, &g, S, p->pos[j], b, c->force[k], at);
+            continue;
+        }
+        /* one side excluded (a wall particle): a wall contact of the other */
+        size_t in = a->keep[i] ? i : j, out = a->keep[i] ? j : i;
+        double cp[3], fin[3];
+        contact_point(f, k, in, out, cp);
+        for (int m = 0; m < 3; m++)
+            fin[m] = in == i ? c->force[k][m] : -c->force[k][m];
+        double b[3] = {p->pos[in][0] - cp[0], p->pos[in][1] - cp[1], p->pos[in][2] - cp[2]};
+        mimas_box_min_image(&f->box, b);
+        double from[3] = {p->pos[in][0] - b[0], p->pos[in][1] - b[1], p->pos[in][2] - b[2]};
+        deposit_branch(&dp, &g, S, from, b, fin, from);
+        wall_ctx wc = {S, {0, 0, 0}};
+        basis B;
+        basis_at(&g, from, &B);
+        to_local(&B, fin, wc.f);
+        mimas_deposit_sphere(&dp, from, 0.0, add_wall_force, &wc);
+    }
+    const mimas_wall_contacts *w = &f->walls;
+    for (size_t k = 0; f->has_walls && k < w->n; k++) {
+        size_t i = w->particle[k];
+        if (!a->keep[i])
+            continue;
+        /* f_iw (x) (r_i - c), the segment from the contact point (PHYSICS 1, 6) */
+        double b[3] = {p->pos[i][0] - w->point[k][0], p->pos[i][1] - w->point[k][1],
+                       p->pos[i][2] - w->point[k][2]};
+        mimas_box_min_image(&f->box, b);
+        double from[3] = {p->pos[i][0] - b[0], p->pos[i][1] - b[1], p->pos[i][2] - b[2]};
+        deposit_branch(&dp, &g, S, from, b, w->force[k], from);
+        wall_ctx wc = {S, {0, 0, 0}};
+        basis B;
+        basis_at(&g, from, &B);
+        to_local(&B, w->force[k], wc.f);
+        mimas_deposit_sphere(&dp, from, 0.0, add_wall_force, &wc);
+    }
+    for (size_t k = 0; k < a->cells * NSUMS; k++)
+        a->sum[k] += S[k];
+    a->frames++;
+    if (a->opt.spread) {
+        size_t nf = mimas_fields_count();
+        int cyl = g.kind == MIMAS_GRID_CYLINDRICAL && !a->opt.grid_none;
+        for (size_t cell = 0; cell < a->cells; cell++) {
+            double ctr[3] = {0, 0, 0};
+            if (cyl)
+                mimas_grid_cell_centre(&g, cell, ctr);
+            mimas_fields_derive(&S[cell * NSUMS], cyl, ctr[0], a->scratch);
+            for (size_t q = 0; q < nf; q++) {
+                double x = a->scratch[q];
+                if (isnan(x))
+                    continue;
+                size_t at = cell * nf + q;
+                double n = ++a->f_count[at];
+                double delta = x - a->f_mean[at];
+                a->f_mean[at] += delta / n;
+                a->f_m2[at] += delta * (x - a->f_mean[at]);
+            }
+        }
+    }
+    return MIMAS_OK;
+}
+
+void mimas_average_sums(const mimas_average *a, size_t cell, double *sums)
+{
+    for (int k = 0; k < NSUMS; k++)
+        sums[k] = a->frames ? a->sum[cell * NSUMS + k] / (double)a->frames : 0.0;
+}
+
+void mimas_average_cell(const mimas_average *a, size_t cell, double *mean, double *sd,
+                        double *count)
+{
+    double S[NSUMS];
+    mimas_average_sums(a, cell, S);
+    int cyl = a->grid.kind == MIMAS_GRID_CYLINDRICAL && !a->opt.grid_none;
+    double ctr[3] = {0, 0, 0};
+    if (cyl)
+        mimas_grid_cell_centre(&a->grid, cell, ctr);
+    mimas_fields_derive(S, cyl, ctr[0], mean);
+    size_t nf = mimas_fields_count();
+    for (size_t q = 0; q < nf; q++) {
+        size_t at = cell * nf + q;
+        double n = a->opt.spread ? a->f_count[at] : 0;
+        if (sd)
+            sd[q] = n > 1 ? sqrt(a->f_m2[at] / (n - 1)) : NAN;
+        if (count)
+            count[q] = n;
+    }
+}

@@ -1,0 +1,49 @@
+/* Micro-macro averaging (PHYSICS 6): frames in, time-averaged fields on a
+ * grid out.  Time averages are taken of the primary sums (mass, momentum,
+ * momentum flux, contact stress, fabric, ...) and the fields derived from the
+ * averages; the spread over frames comes from per-frame fields. */
+#ifndef MIMAS_AVERAGE_H
+#define MIMAS_AVERAGE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "error.h"
+#include "frame.h"
+#include "grid.h"
+#include "weight.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct mimas_average_options {
+    mimas_grid grid;
+    int grid_none;            /* one cell: the box */
+    mimas_weight weight;
+    const int32_t *types;     /* particle types to keep (or to drop with exclude) */
+    size_t ntypes;
+    int exclude;
+    int spread;               /* keep per-frame statistics (standard deviation, error) */
+} mimas_average_options;
+
+typedef struct mimas_average mimas_average;
+
+int mimas_average_create(mimas_average **a, const mimas_average_options *o, mimas_error *err);
+int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err);
+size_t mimas_average_frames(const mimas_average *a);
+/* The grid with the bounds of the first frame's box filled in. */
+const mimas_grid *mimas_average_grid(const mimas_average *a);
+/* Time-averaged fields of one cell (mimas_fields_count() values), and if the
+ * average keeps the spread, the standard deviation over frames and the number
+ * of frames in which each field was defined (sd, count may be NULL). */
+void mimas_average_cell(const mimas_average *a, size_t cell, double *mean, double *sd,
+                        double *count);
+/* The time-averaged primary sums of a cell (NSUMS values, fields.h). */
+void mimas_average_sums(const mimas_average *a, size_t cell, double *sums);
+void mimas_average_free(mimas_average *a);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,263 @@
+#include <config.h>
+
+#include "deposit.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "overlap.h"
+
+void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,
+                        const mimas_box *box, int grid_none)
+{
+    memset(dp, 0, sizeof *dp);
+    dp->grid = g;
+    dp->wt = wt;
+    dp->none = grid_none;
+    dp->box_volume = mimas_box_volume(box);
+    for (int d = 0; d < 3; d++)
+        dp->h[d] = (g->hi[d] - g->lo[d]) / g->n[d];
+    dp->cart_volume = dp->h[0] * dp->h[1] * dp->h[2];
+    /* images along the periodic edge vectors: shifts k_a a + k_b b + k_c c */
+    double e[3][3];
+    mimas_box_edges(box, e);
+    int range[3];
+    for (int d = 0; d < 3; d++)
+        range[d] = box->periodic[d] ? 1 : 0;
+    dp->nshift = 0;
+    for (int pass = 0; pass < 2; pass++) /* the zero shift first */
+        for (int i = -range[0]; i <= range[0]; i++)
+            for (int j = -range[1]; j <= range[1]; j++)
+                for (int k = -range[2]; k <= range[2]; k++) {
+                    int zero = !i && !j && !k;
+                    if (zero != (pass == 0))
+                        continue;
+                    for (int d = 0; d < 3; d++)
+                        dp->shift[dp->nshift][d] = i * e[0][d] + j * e[1][d] + k * e[2][d];
+                    dp->nshift++;
+                }
+}
+
+/* Cell index range [i0, i1] of direction d overlapping [lo, hi] (grid
+ * coordinates); 0 if none. */
+static int index_range(const mimas_grid *g, const double *h, int d, double lo, double hi,
+                       int *i0, int *i1)
+{
+    if (hi < g->lo[d] || lo > g->hi[d])
+        return 0;
+    double a = floor((lo - g->lo[d]) / h[d]), b = floor((hi - g->lo[d]) / h[d]);
+    *i0 = a < 0 ? 0 : (int)a;
+    *i1 = b >= g->n[d] ? g->n[d] - 1 : (int)b;
+    return *i0 <= *i1;
+}
+
+/* The weight of a sphere (or point, R = 0) in one cell. */
+static double cell_weight_sphere(const mimas_deposit *dp, size_t cell, const double x[3],
+                                 const double a[3], double R)
+{
+    const mimas_grid *g = dp->grid;
+    double lo[3], hi[3];
+    mimas_grid_cell_bounds(g, cell, lo, hi);
+    double V = g->kind == MIMAS_GRID_CARTESIAN ? dp->cart_volume
+                                               : mimas_grid_cell_volume(g, cell);
+    if (dp->wt->kind == MIMAS_WEIGHT_GAUSS) {
+        double c[3], p[3];
+        mimas_grid_cell_centre(g, cell, c);
+        if (g->kind == MIMAS_GRID_CARTESIAN) {
+            double d[3] = {c[0] - x[0], c[1] - x[1], c[2] - x[2]};
+            return mimas_gauss_phi(dp->wt, d);
+        }
+        p[0] = c[0] * cos(c[1]);
+        p[1] = c[0] * sin(c[1]);
+        p[2] = c[2];
+        double d[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+        return mimas_gauss_phi(dp->wt, d);
+    }
+    double vol_p = 4.0 / 3.0 * M_PI * R * R * R;
+    double ov = g->kind == MIMAS_GRID_CARTESIAN
+                    ? overlap_sphere_box(x, R, lo, hi)
+                    : overlap_sphere_cylcell(a, R, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]);
+    return ov / (vol_p * V);
+}
+
+/* The cell holding a point (grid coordinates q), or 0 if it is off the grid. */
+static int cell_of(const mimas_grid *g, const double *h, const double q[3], size_t *cell)
+{
+    int idx[3];
+    for (int d = 0; d < 3; d++) {
+        if (!(q[d] >= g->lo[d] && q[d] <= g->hi[d]))
+            return 0;
+        int k = (int)floor((q[d] - g->lo[d]) / h[d]);
+        idx[d] = k >= g->n[d] ? g->n[d] - 1 : k;
+    }
+    *cell = mimas_grid_index(g, idx);
+    return 1;
+}
+
+/* Grid coordinates (x y z, or r phi z with phi mapped into the grid's range
+ * where possible) of an axis-frame point. */
+static void grid_coords(const mimas_grid *g, const double a[3], double q[3])
+{
+    if (g->kind == MIMAS_GRID_CARTESIAN) {
+        memcpy(q, a, 3 * sizeof *q);
+        return;
+    }
+    q[0] = hypot(a[0], a[1]);
+    double phi = atan2(a[1], a[0]);
+    while (phi < g->lo[1])
+        phi += 2 * M_PI;
+    while (phi > g->hi[1] && phi - 2 * M_PI >= g->lo[1])
+        phi -= 2 * M_PI;
+    q[1] = phi;
+    q[2] = a[2];
+}
+
+/* Calls visit for every cell that may meet the ball of radius reach about
+ * the axis-frame point a (all phi cells when the ball holds the axis or the
+ * phi range wraps). */
+typedef void (*cell_visit)(const mimas_deposit *dp, size_t cell, void *ctx);
+static void candidate_cells(const mimas_deposit *dp, const double a[3], double reach,
+                            cell_visit visit, void *ctx)
+{
+    const mimas_grid *g = dp->grid;
+    double q[3];
+    grid_coords(g, a, q);
+    int lo[3], hi[3];
+    if (g->kind == MIMAS_GRID_CARTESIAN) {
+        for (int d = 0; d < 3; d++)
+            if (!index_range(g, dp->h, d, q[d] - reach, q[d] + reach, &lo[d], &hi[d]))
+                return;
+    } else {
+        if (!index_range(g, dp->h, 0, q[0] - reach, q[0] + reach, &lo[0], &hi[0]) ||
+            !index_range(g, dp->h, 2, q[2] - reach, q[2] + reach, &lo[2], &hi[2]))
+            return;
+        double half = q[0] > reach ? asin(reach / q[0]) : M_PI;
+        lo[1] = 0;
+        hi[1] = g->n[1] - 1;
+        if (half < M_PI && q[1] - half >= g->lo[1] && q[1] + half <= g->hi[1])
+            index_range(g, dp->h, 1, q[1] - half, q[1] + half, &lo[1], &hi[1]);
+    }
+    int idx[3];
+    for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
+        for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++)
+            for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++)
+                visit(dp, mimas_grid_index(g, idx), ctx);
+}
+
+typedef struct sphere_ctx {
+    const double *x, *a;
+    double R;
+    deposit_fn fn;
+    void *user;
+} sphere_ctx;
+
+static void visit_sphere(const mimas_deposit *dp, size_t cell, void *ctx)
+{
+    sphere_ctx *s = ctx;
+    double w = cell_weight_sphere(dp, cell, s->x, s->a, s->R);
+    if (w != 0.0)
+        s->fn(s->user, cell, w);
+}
+
+void mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, deposit_fn fn,
+                          void *user)
+{
+    const mimas_grid *g = dp->grid;
+    if (dp->none) {
+        fn(user, 0, 1.0 / dp->box_volume);
+        return;
+    }
+    int point = dp->wt->kind == MIMAS_WEIGHT_BINS_CENTER ||
+                (dp->wt->kind == MIMAS_WEIGHT_BINS && !(R > 0));
+    double reach = dp->wt->kind == MIMAS_WEIGHT_GAUSS ? mimas_weight_reach(dp->wt) : R;
+    for (int s = 0; s < dp->nshift; s++) {
+        double xs[3] = {x[0] + dp->shift[s][0], x[1] + dp->shift[s][1], x[2] + dp->shift[s][2]};
+        double a[3];
+        mimas_grid_to_axis(g, xs, a);
+        if (point) {
+            double q[3];
+            size_t cell;
+            grid_coords(g, a, q);
+            if (cell_of(g, dp->h, q, &cell))
+                fn(user, cell, 1.0 / (g->kind == MIMAS_GRID_CARTESIAN
+                                          ? dp->cart_volume
+                                          : mimas_grid_cell_volume(g, cell)));
+            continue;
+        }
+        sphere_ctx ctx = {xs, a, R, fn, user};
+        candidate_cells(dp, a, reach, visit_sphere, &ctx);
+    }
+}
+
+typedef struct segment_ctx {
+    const double *a, *b;     /* Cartesian (for box cells and the Gaussian) */
+    const double *aa, *ab;   /* axis frame (cylindrical cells) */
+    deposit_fn fn;
+    void *user;
+} segment_ctx;
+
+static void visit_segment(const mimas_deposit *dp, size_t cell, void *ctx)
+{
+    segment_ctx *s = ctx;
+    const mimas_grid *g = dp->grid;
+    double w;
+    if (dp->wt->kind == MIMAS_WEIGHT_GAUSS) {
+        double c[3], p[3];
+        mimas_grid_cell_centre(g, cell, c);
+        if (g->kind == MIMAS_GRID_CARTESIAN)
+            memcpy(p, c, sizeof p);
+        else {
+            p[0] = c[0] * cos(c[1]);
+            p[1] = c[0] * sin(c[1]);
+            p[2] = c[2];
+        }
+        const double *a = g->kind == MIMAS_GRID_CARTESIAN ? s->a : s->aa;
+        const double *b = g->kind == MIMAS_GRID_CARTESIAN ? s->b : s->ab;
+        double d[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+        double br[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        w = mimas_gauss_line(dp->wt, d, br);
+    } else {
+        double lo[3], hi[3];
+        mimas_grid_cell_bounds(g, cell, lo, hi);
+        double f = g->kind == MIMAS_GRID_CARTESIAN
+                       ? segment_fraction_box(s->a, s->b, lo, hi)
+                       : segment_fraction_cylcell(s->aa, s->ab, lo[0], hi[0], lo[1], hi[1], lo[2],
+                                                  hi[2]);
+        w = f / (g->kind == MIMAS_GRID_CARTESIAN ? dp->cart_volume
+                                                 : mimas_grid_cell_volume(g, cell));
+    }
+    if (w != 0.0)
+        s->fn(s->user, cell, w);
+}
+
+void mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const double b[3],
+                           deposit_fn fn, void *user)
+{
+    const mimas_grid *g = dp->grid;
+    if (dp->none) {
+        fn(user, 0, 1.0 / dp->box_volume);
+        return;
+    }
+    if (dp->wt->kind == MIMAS_WEIGHT_BINS_CENTER) {
+        /* the cell of the segment's midpoint */
+        double m[3] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
+        mimas_deposit_sphere(dp, m, 0.0, fn, user);
+        return;
+    }
+    double half = 0.5 * sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+                             (b[2] - a[2]) * (b[2] - a[2]));
+    double reach = half + mimas_weight_reach(dp->wt);
+    for (int s = 0; s < dp->nshift; s++) {
+        double as[3], bs[3], aa[3], ab[3], mid[3], am[3];
+        for (int d = 0; d < 3; d++) {
+            as[d] = a[d] + dp->shift[s][d];
+            bs[d] = b[d] + dp->shift[s][d];
+            mid[d] = 0.5 * (as[d] + bs[d]);
+        }
+        mimas_grid_to_axis(g, as, aa);
+        mimas_grid_to_axis(g, bs, ab);
+        mimas_grid_to_axis(g, mid, am);
+        segment_ctx ctx = {as, bs, aa, ab, fn, user};
+        candidate_cells(dp, am, reach, visit_segment, &ctx);
+    }
+}

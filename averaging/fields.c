@@ -1,0 +1,114 @@
+#include <config.h>
+
+#include "fields.h"
+
+#include <math.h>
+#include <string.h>
+
+/* column indices of the derived fields */
+enum {
+    F_N, F_RHO, F_NU, F_V, F_OMEGA = F_V + 3, F_STRESS, F_KSTRESS = F_STRESS + 6,
+    F_CSTRESS = F_KSTRESS + 6, F_P = F_CSTRESS + 6, F_TAU, F_TAU_PHI, F_MU, F_T, F_Z, F_ZNR,
+    F_FABRIC, F_D = F_FABRIC + 6, F_WALL, NFIELDS = F_WALL + 3
+};
+
+#define TENSOR(base, unit, meaning)                                                          \
+    {base "_xx", base "_rr", unit, meaning}, {base "_yy", base "_phiphi", unit, meaning},    \
+        {base "_zz", base "_zz", unit, meaning}, {base "_xy", base "_rphi", unit, meaning},  \
+        {base "_xz", base "_rz", unit, meaning}, {base "_yz", base "_phiz", unit, meaning}
+
+static const mimas_field_desc fields[NFIELDS] = {
+    {"n", NULL, "m-3", "number density sum_i phi"},
+    {"rho", NULL, "kg m-3", "mass density sum_i m_i phi"},
+    {"nu", NULL, "1", "solid fraction sum_i V_i phi"},
+    {"v_x", "v_r", "m s-1", "velocity j/rho, j = sum_i m_i v_i phi (undefined where rho = 0)"},
+    {"v_y", "v_phi", "m s-1", "velocity j/rho (undefined where rho = 0)"},
+    {"v_z", "v_z", "m s-1", "velocity j/rho (undefined where rho = 0)"},
+    {"", "omega", "s-1", "angular velocity v_phi/r at the cell centre"},
+    TENSOR("stress", "Pa", "total stress kstress + cstress (symmetric part), compression positive"),
+    TENSOR("kstress", "Pa", "kinetic stress sum_i m_i (v_i - V)(x)(v_i - V) phi"),
+    TENSOR("cstress", "Pa", "contact stress sum_c f_ij (x) (r_i - r_j) psi_ij (symmetric part)"),
+    {"p", NULL, "Pa", "pressure tr(stress)/3"},
+    {"tau", NULL, "Pa", "shear stress sqrt(s:s/2), s the deviator of stress"},
+    {"", "tau_phi", "Pa", "shear stress sqrt(stress_rphi^2 + stress_phiz^2) (000 eq. 2.15)"},
+    {"mu", NULL, "1", "stress ratio tau/p (undefined where p <= 0)"},
+    {"T", NULL, "J", "granular temperature tr(kstress)/(3 n) (undefined where n = 0)"},
+    {"Z", NULL, "1", "coordination number sum_i c_i phi / sum_i phi"},
+    {"Z_nr", NULL, "1", "coordination number without rattlers (particles with < 2 contacts)"},
+    TENSOR("fabric", "m-3", "fabric sum_c n (x) n psi"),
+    {"d", NULL, "m", "mean particle diameter sum_i 2 R_i phi / sum_i phi"},
+    {"wall_force_x", "wall_force_r", "N m-3", "wall force density sum_w f_w delta(r - c_w)"},
+    {"wall_force_y", "wall_force_phi", "N m-3", "wall force density"},
+    {"wall_force_z", "wall_force_z", "N m-3", "wall force density"},
+};
+
+size_t mimas_fields_count(void)
+{
+    return NFIELDS;
+}
+
+const mimas_field_desc *mimas_field(size_t k)
+{
+    return &fields[k];
+}
+
+const char *mimas_field_name(size_t k, int cylindrical)
+{
+    const char *name = cylindrical && fields[k].cname ? fields[k].cname : fields[k].name;
+    return name[0] ? name : NULL;
+}
+
+/* symmetric part of a 3x3 tensor into xx yy zz xy xz yz */
+static void sym6(const double *T, double *out)
+{
+    out[0] = T[0];
+    out[1] = T[4];
+    out[2] = T[8];
+    out[3] = 0.5 * (T[1] + T[3]);
+    out[4] = 0.5 * (T[2] + T[6]);
+    out[5] = 0.5 * (T[5] + T[7]);
+}
+
+static double ratio(double a, double b)
+{
+    return b != 0.0 ? a / b : NAN;
+}
+
+void mimas_fields_derive(const double *S, int cylindrical, double r, double *out)
+{
+    double rho = S[S_M];
+    out[F_N] = S[S_N];
+    out[F_RHO] = rho;
+    out[F_NU] = S[S_V];
+    double V[3];
+    for (int k = 0; k < 3; k++)
+        out[F_V + k] = V[k] = ratio(S[S_P + k], rho);
+    out[F_OMEGA] = cylindrical ? ratio(V[1], r) : NAN;
+    /* kinetic stress: momentum flux minus rho V (x) V (fluctuations about the
+     * local mean, PHYSICS 6); zero where there is no mass */
+    double K[9];
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            K[3 * a + b] = rho > 0 ? S[S_K + 3 * a + b] - rho * V[a] * V[b] : 0.0;
+    double T[9];
+    for (int k = 0; k < 9; k++)
+        T[k] = K[k] + S[S_C + k];
+    sym6(T, &out[F_STRESS]);
+    sym6(K, &out[F_KSTRESS]);
+    sym6(&S[S_C], &out[F_CSTRESS]);
+    const double *s = &out[F_STRESS];
+    double p = (s[0] + s[1] + s[2]) / 3.0;
+    out[F_P] = p;
+    double d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p;
+    double ss = d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+    out[F_TAU] = sqrt(0.5 * ss);
+    out[F_TAU_PHI] = cylindrical ? sqrt(s[3] * s[3] + s[5] * s[5]) : NAN;
+    out[F_MU] = p > 0 ? out[F_TAU] / p : NAN;
+    out[F_T] = ratio(K[0] + K[4] + K[8], 3.0 * S[S_N]);
+    out[F_Z] = ratio(S[S_Z], S[S_N]);
+    out[F_ZNR] = ratio(S[S_ZN], S[S_NN]);
+    sym6(&S[S_F], &out[F_FABRIC]);
+    out[F_D] = ratio(S[S_D], S[S_N]);
+    for (int k = 0; k < 3; k++)
+        out[F_WALL + k] = S[S_W + k];
+}

@@ -1,0 +1,45 @@
+/* The fields of mimas average: primary sums per cell (what is deposited and
+ * time-averaged) and the fields derived from them, described once in a table
+ * (name, unit, meaning) that feeds the TSV header and docs/fields.md
+ * (DESIGN.md: libvips-style description).  PHYSICS 1 and 6 give the
+ * definitions; stress is compression-positive. */
+#ifndef MIMAS_FIELDS_H
+#define MIMAS_FIELDS_H
+
+#include <stddef.h>
+
+/* primary sums per cell, each already divided by volume (a density) */
+enum {
+    S_N,            /* sum phi: number density */
+    S_M,            /* sum m phi */
+    S_V,            /* sum V_p phi: solid fraction */
+    S_P,            /* 3: sum m v phi */
+    S_K = S_P + 3,  /* 9: sum m v (x) v phi */
+    S_C = S_K + 9,  /* 9: sum f (x) b psi, contact stress */
+    S_F = S_C + 9,  /* 9: sum n (x) n psi, fabric */
+    S_Z = S_F + 9,  /* sum c_p phi, c_p = contacts of particle p */
+    S_ZN,           /* the same over particles with c_p >= 2 */
+    S_NN,           /* sum phi over particles with c_p >= 2 */
+    S_D,            /* sum 2 R phi: diameters */
+    S_W,            /* 3: sum f_wall delta(r - c): wall force density */
+    NSUMS = S_W + 3
+};
+
+typedef struct mimas_field_desc {
+    const char *name;   /* for Cartesian grids */
+    const char *cname;  /* for cylindrical grids (NULL: same name; "" : not there) */
+    const char *unit;
+    const char *meaning;
+} mimas_field_desc;
+
+/* All derived columns, in output order. */
+size_t mimas_fields_count(void);
+const mimas_field_desc *mimas_field(size_t k);
+/* The column's name on a grid of this kind (NULL if the field does not exist there). */
+const char *mimas_field_name(size_t k, int cylindrical);
+/* Computes every derived column from the sums of one cell; r is the cell
+ * centre's radius (cylindrical grids).  Undefined values (velocity of an
+ * empty cell, mu where p <= 0, ...) are NaN, as docs/fields.md says. */
+void mimas_fields_derive(const double *S, int cylindrical, double r, double *out);
+
+#endif

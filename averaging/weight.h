@@ -1,0 +1,44 @@
+/* Coarse-graining weights of mimas average (--weight): Heaviside bins with
+ * exact overlaps, centre-in-cell bins, and the Gaussian coarse-graining
+ * function with its exact line integral (PHYSICS 6). */
+#ifndef MIMAS_WEIGHT_H
+#define MIMAS_WEIGHT_H
+
+#include "error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum mimas_weight_kind {
+    MIMAS_WEIGHT_BINS,        /* exact volume / segment overlap with the cell */
+    MIMAS_WEIGHT_BINS_CENTER, /* the cell holding the centre (contact point) */
+    MIMAS_WEIGHT_GAUSS        /* normalised Gaussian of width w, cut at cutoff*w */
+} mimas_weight_kind;
+
+typedef struct mimas_weight {
+    mimas_weight_kind kind;
+    double w;        /* Gaussian standard deviation */
+    double cutoff;   /* in units of w (default 3) */
+    double norm;     /* 1 / integral of the cut Gaussian (renormalisation) */
+} mimas_weight;
+
+/* "bins", "bins:center", "gauss:w=W[,cutoff=C]". */
+int mimas_weight_parse(mimas_weight *wt, const char *spec, mimas_error *err);
+
+/* The Gaussian coarse-graining function at distance vector d (zero beyond the
+ * cutoff), normalised so that its integral over space is 1. */
+double mimas_gauss_phi(const mimas_weight *wt, const double d[3]);
+/* Its gradient with respect to the field point (d = r - r_i). */
+void mimas_gauss_grad(const mimas_weight *wt, const double d[3], double g[3]);
+/* The line integral psi = int_0^1 phi(d - s b) ds, d = r - r_j, b = r_i - r_j,
+ * in closed form with erf, restricted to the part of the segment within the
+ * cutoff. */
+double mimas_gauss_line(const mimas_weight *wt, const double d[3], const double b[3]);
+/* The support radius cutoff * w. */
+double mimas_weight_reach(const mimas_weight *wt);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,300 @@
+/* mimas average: continuum fields on a grid from any input (PHYSICS 6). */
+#include <config.h>
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "average.h"
+#include "commands.h"
+#include "fields.h"
+#include "reader.h"
+
+static const cli_option options[] = {
+    {"grid", 0, "SPEC", "none, x=LO:HI:N[,y=..][,z=..], or r=LO:HI:N[,phi=LO:HI:N][,z=LO:HI:N]"},
+    {"weight", 0, "SPEC", "bins (exact overlaps), bins:center, gauss:w=W[,cutoff=C]"},
+    {"fields", 0, "LIST", "fields to write (comma list; 'stress' selects stress_*; default all)"},
+    {"axis", 0, "X0,Y0,Z0,DX,DY,DZ", "axis of cylindrical grids (default: z through the origin)"},
+    {"from", 0, "T0", "first time to use (s)"},
+    {"to", 0, "T1", "last time to use (s)"},
+    {"every", 0, "K", "use every K-th frame of those selected"},
+    {"types", 0, "L", "use only particles of these types (comma list)"},
+    {"exclude-types", 0, "L", "drop particles of these types (e.g. glued wall particles; their "
+                              "contacts become wall contacts of the others)"},
+    {"errors", 0, NULL, "add NAME_sem columns: the standard error over frames"},
+    {"tsv", 0, "FILE", "write the table to FILE (default: standard output)"},
+};
+
+enum { O_GRID, O_WEIGHT, O_FIELDS, O_AXIS, O_FROM, O_TO, O_EVERY, O_TYPES, O_EXCLUDE,
+       O_ERRORS, O_TSV };
+
+typedef struct average_args {
+    const cli_command *cmd;
+    const char *grid, *weight, *fields, *axis, *tsv;
+    double from, to;
+    int has_from, has_to, errors;
+    long every;
+    int32_t types[64];
+    size_t ntypes;
+    int exclude, types_given;
+} average_args;
+
+static int parse_types(average_args *a, const char *arg, const char *opt)
+{
+    if (a->types_given)
+        return cli_fail(a->cmd, 1, "--types and --exclude-types exclude each other");
+    a->types_given = 1;
+    char *text = strdup(arg), *save = NULL;
+    int rc = 0;
+    for (char *tok = strtok_r(text, ",", &save); tok && !rc; tok = strtok_r(NULL, ",", &save)) {
+        long v;
+        if (cli_parse_long(tok, &v) || v < INT32_MIN || v > INT32_MAX || a->ntypes >= 64)
+            rc = cli_fail(a->cmd, 1, "--%s needs a comma list of type numbers, not '%s'", opt,
+                          arg);
+        else
+            a->types[a->ntypes++] = (int32_t)v;
+    }
+    free(text);
+    return rc;
+}
+
+static int on_option(void *ctx, size_t opt, const char *arg)
+{
+    average_args *a = ctx;
+    switch (opt) {
+    case O_GRID: a->grid = arg; return 0;
+    case O_WEIGHT: a->weight = arg; return 0;
+    case O_FIELDS: a->fields = arg; return 0;
+    case O_AXIS: a->axis = arg; return 0;
+    case O_FROM:
+    case O_TO: {
+        double v;
+        if (cli_parse_double(arg, &v))
+            return cli_fail(a->cmd, 1, "--%s needs a time, not '%s'", options[opt].name, arg);
+        if (opt == O_FROM)
+            a->from = v, a->has_from = 1;
+        else
+            a->to = v, a->has_to = 1;
+        return 0;
+    }
+    case O_EVERY:
+        if (cli_parse_long(arg, &a->every) || a->every < 1)
+            return cli_fail(a->cmd, 1, "--every needs a positive whole number, not '%s'", arg);
+        return 0;
+    case O_TYPES: return parse_types(a, arg, "types");
+    case O_EXCLUDE: a->exclude = 1; return parse_types(a, arg, "exclude-types");
+    case O_ERRORS: a->errors = 1; return 0;
+    case O_TSV: a->tsv = arg; return 0;
+    }
+    return 1;
+}
+
+/* Which derived columns to write: all that exist on this grid, or those the
+ * list names (a name selects a column, or the group NAME_*). */
+static int choose_fields(average_args *a, int cyl, unsigned char *want)
+{
+    size_t nf = mimas_fields_count();
+    for (size_t k = 0; k < nf; k++)
+        want[k] = !a->fields && mimas_field_name(k, cyl) != NULL;
+    if (!a->fields)
+        return 0;
+    char *text = strdup(a->fields), *save = NULL;
+    int rc = 0;
+    for (char *tok = strtok_r(text, ",", &save); tok && !rc; tok = strtok_r(NULL, ",", &save)) {
+        int exact = 0, any = 0;
+        for (size_t k = 0; k < nf; k++) {
+            const char *n = mimas_field_name(k, cyl);
+            if (n && !strcmp(n, tok))
+                exact = 1, want[k] = 1, any = 1;
+        }
+        size_t len = strlen(tok);
+        for (size_t k = 0; !exact && k < nf; k++) {
+            const char *n = mimas_field_name(k, cyl);
+            if (n && !strncmp(n, tok, len) && n[len] == '_')
+                want[k] = 1, any = 1;
+        }
+        if (!any)
+            rc = cli_fail(a->cmd, 1, "unknown field '%s' on a %s grid (see docs/fields.md)", tok,
+                          cyl ? "cylindrical" : "Cartesian");
+    }
+    free(text);
+    return rc;
+}
+
+static void print_value(FILE *out, double v)
+{
+    fprintf(out, isnan(v) ? "\tnan" : "\t%.17g", v);
+}
+
+static int write_table(FILE *out, const mimas_average *avg, int grid_none, int cyl,
+                       const unsigned char *want, int errors)
+{
+    const mimas_grid *g = mimas_average_grid(avg);
+    size_t nf = mimas_fields_count();
+    double *mean = malloc(nf * sizeof *mean), *sd = malloc(nf * sizeof *sd),
+           *count = malloc(nf * sizeof *count);
+    if (!mean || !sd || !count) {
+        free(mean);
+        free(sd);
+        free(count);
+        return -1;
+    }
+    /* header: the gridded coordinates, then the fields */
+    int first = 1;
+    for (int d = 0; d < 3 && !grid_none; d++)
+        if (g->gridded[d]) {
+            fprintf(out, "%s%s", first ? "" : "\t", mimas_grid_coord_name(g, d));
+            first = 0;
+        }
+    for (size_t k = 0; k < nf; k++) {
+        if (!want[k])
+            continue;
+        fprintf(out, "%s%s", first ? "" : "\t", mimas_field_name(k, cyl));
+        first = 0;
+        if (errors)
+            fprintf(out, "\t%s_sem", mimas_field_name(k, cyl));
+    }
+    fputc('\n', out);
+    size_t cells = grid_none ? 1 : mimas_grid_cells(g);
+    for (size_t cell = 0; cell < cells; cell++) {
+        mimas_average_cell(avg, cell, mean, sd, count);
+        double ctr[3];
+        if (!grid_none)
+            mimas_grid_cell_centre(g, cell, ctr);
+        first = 1;
+        for (int d = 0; d < 3 && !grid_none; d++)
+            if (g->gridded[d]) {
+                fprintf(out, first ? "%.17g" : "\t%.17g", ctr[d]);
+                first = 0;
+            }
+        for (size_t k = 0; k < nf; k++) {
+            if (!want[k])
+                continue;
+            if (first) {
+                fprintf(out, isnan(mean[k]) ? "nan" : "%.17g", mean[k]);
+                first = 0;
+            } else {
+                print_value(out, mean[k]);
+            }
+            if (errors)
+                print_value(out, count[k] > 1 ? sd[k] / sqrt(count[k]) : NAN);
+        }
+        fputc('\n', out);
+    }
+    free(mean);
+    free(sd);
+    free(count);
+    return ferror(out) ? -1 : 0;
+}
+
+static int run(const cli_command *cmd, int argc, char **argv)
+{
+    average_args a = {0};
+    a.cmd = cmd;
+    a.every = 1;
+    cli_inputs in = {0};
+    int first;
+    int rc = cli_parse(cmd, argc, argv, on_option, &a, &in, &first);
+    if (!rc && (!a.grid || !a.weight))
+        rc = cli_fail(cmd, 1, "--grid and --weight are required (see mimas average --help)");
+    mimas_average_options o;
+    memset(&o, 0, sizeof o);
+    mimas_error err;
+    if (!rc && (mimas_grid_parse(&o.grid, a.grid, a.axis, &err) ||
+                mimas_weight_parse(&o.weight, a.weight, &err)))
+        rc = cli_fail(cmd, 1, "%s", err.msg);
+    o.grid_none = a.grid && !strcmp(a.grid, "none");
+    o.types = a.types;
+    o.ntypes = a.ntypes;
+    o.exclude = a.exclude;
+    o.spread = a.errors;
+    int cyl = o.grid.kind == MIMAS_GRID_CYLINDRICAL && !o.grid_none;
+    unsigned char want[128];
+    if (!rc)
+        rc = choose_fields(&a, cyl, want);
+    mimas_reader *r = NULL;
+    if (!rc)
+        rc = cli_open_inputs(cmd, &in, argc, argv, first, &r);
+    mimas_average *avg = NULL;
+    if (!rc && mimas_average_create(&avg, &o, &err))
+        rc = cli_fail(cmd, mimas_exit_status(err.code), "%s", err.msg);
+    if (rc) {
+        mimas_reader_close(r);
+        cli_inputs_free(&in);
+        return rc < 0 ? 0 : rc;
+    }
+    mimas_frame f;
+    mimas_frame_init(&f);
+    long seen = 0;
+    int status = MIMAS_OK;
+    while ((status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
+        if ((a.has_from || a.has_to) && isnan(f.time)) {
+            status = mimas_error_set(&err, MIMAS_EUSAGE, "%s: frame at step %lld has no time; "
+                                     "give --timestep for --from/--to", argv[first],
+                                     (long long)f.step);
+            break;
+        }
+        if ((a.has_from && f.time < a.from) || (a.has_to && f.time > a.to))
+            continue;
+        if (seen++ % a.every)
+            continue;
+        status = mimas_average_add(avg, &f, &err);
+        if (status) {
+            mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
+            break;
+        }
+    }
+    mimas_frame_free(&f);
+    mimas_reader_close(r);
+    cli_inputs_free(&in);
+    if (status == MIMAS_END && mimas_average_frames(avg) == 0)
+        status = mimas_error_set(&err, MIMAS_EDATA, "%s: no frame in the selected time range",
+                                 argv[first]);
+    if (status != MIMAS_END) {
+        mimas_average_free(avg);
+        return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
+    }
+    /* the table: to a temporary name and renamed, or to standard output */
+    char tmp[4096];
+    FILE *out = stdout;
+    if (a.tsv && strcmp(a.tsv, "-") != 0) {
+        snprintf(tmp, sizeof tmp, "%s.tmp%ld", a.tsv, (long)getpid());
+        out = fopen(tmp, "w");
+        if (!out) {
+            mimas_average_free(avg);
+            return cli_fail(cmd, 2, "%s: cannot write: %s", a.tsv, strerror(errno));
+        }
+    }
+    rc = write_table(out, avg, o.grid_none, cyl, want, a.errors);
+    mimas_average_free(avg);
+    if (out != stdout) {
+        rc |= fclose(out);
+        if (rc || rename(tmp, a.tsv) != 0) {
+            remove(tmp);
+            return cli_fail(cmd, 2, "%s: cannot write the table", a.tsv);
+        }
+    } else if (rc || fflush(stdout)) {
+        return cli_fail(cmd, 2, "cannot write the table");
+    }
+    return 0;
+}
+
+const cli_command cmd_average = {
+    "average",
+    "continuum fields (density, velocity, stress, fabric, ...) on a grid",
+    "[options] INPUT... --grid SPEC --weight SPEC",
+    "Coarse-grains particles and contacts onto a Cartesian or cylindrical grid\n"
+    "(PHYSICS 6): number and mass density, solid fraction, velocity, kinetic,\n"
+    "contact and total stress (compression positive), pressure, shear stress,\n"
+    "stress ratio, granular temperature, coordination number, fabric and wall\n"
+    "force density (docs/fields.md).  Time averages are taken of the primary\n"
+    "sums; --errors adds the standard error over frames.  Writes a TSV table,\n"
+    "one row per cell: the gridded cell-centre coordinates, then the fields.",
+    options,
+    sizeof options / sizeof options[0],
+    1,
+    run,
+};

@@ -1,0 +1,379 @@
+/* mimas average: conservation identities and analytic fields, with expected
+ * values computed here independently of the library (PHYSICS 6). */
+#include <config.h>
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "assert_close.h"
+#include "average.h"
+#include "fields.h"
+#include "reader.h"
+
+#define KEYS "pos,vel,id,force,force_normal,force_tangential,torque,torque_normal," \
+             "torque_tangential,history,contactArea,delta,contactPoint"
+
+static const char *data(const char *rel)
+{
+    static char buf[4][512];
+    static int k;
+    k = (k + 1) % 4;
+    const char *top = getenv("TEST_SRCDIR");
+    snprintf(buf[k], sizeof buf[k], "%s/data/liggghts/%s", top ? top : "tests", rel);
+    return buf[k];
+}
+
+/* The last frame of a LIGGGHTS data set. */
+static void last_frame(const char *atoms, const char *pgl, mimas_frame *f)
+{
+    const char *inputs[1] = {atoms}, *contacts[1] = {pgl};
+    mimas_reader_options o;
+    mimas_reader_options_default(&o);
+    o.contacts = contacts;
+    o.ncontacts = 1;
+    o.contact_columns = KEYS;
+    mimas_reader *r;
+    mimas_error err;
+    if (mimas_reader_open(&r, inputs, 1, &o, &err))
+        fail_msg("%s", err.msg);
+    int n = 0, rc;
+    while ((rc = mimas_reader_next(r, f, &err)) == MIMAS_OK)
+        n++;
+    assert_int_equal(rc, MIMAS_END);
+    assert_true(n > 0);
+    mimas_reader_close(r);
+}
+
+/* Minimum image by fractional coordinates (an independent route from the
+ * library's): s = h^-1 d, s -= round(s), d = h s, h = [a b c] as columns. */
+static void min_image_frac(const mimas_box *b, double d[3])
+{
+    double Lx = b->hi[0] - b->lo[0], Ly = b->hi[1] - b->lo[1], Lz = b->hi[2] - b->lo[2];
+    double s2 = d[2] / Lz;
+    double s1 = (d[1] - s2 * b->yz) / Ly;
+    double s0 = (d[0] - s1 * b->xy - s2 * b->xz) / Lx;
+    double s[3] = {s0, s1, s2};
+    for (int k = 0; k < 3; k++)
+        if (b->periodic[k])
+            s[k] -= round(s[k]);
+    d[0] = s[0] * Lx + s[1] * b->xy + s[2] * b->xz;
+    d[1] = s[1] * Ly + s[2] * b->yz;
+    d[2] = s[2] * Lz;
+}
+
+/* sum over contacts of f (x) b, full tensor T[3a+b] = f_a b_b */
+static void direct_contact_sum(const mimas_frame *f, double T[9])
+{
+    memset(T, 0, 9 * sizeof *T);
+    const mimas_particles *p = &f->particles;
+    for (size_t k = 0; k < f->contacts.n; k++) {
+        size_t i = f->contacts.i[k], j = f->contacts.j[k];
+        double d[3] = {p->pos[i][0] - p->pos[j][0], p->pos[i][1] - p->pos[j][1],
+                       p->pos[i][2] - p->pos[j][2]};
+        min_image_frac(&f->box, d);
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++)
+                T[3 * a + b] += f->contacts.force[k][a] * d[b];
+    }
+}
+
+static mimas_average *average_frame(const mimas_frame *f, const char *grid, const char *weight)
+{
+    mimas_average_options o;
+    memset(&o, 0, sizeof o);
+    mimas_error err;
+    assert_int_equal(mimas_grid_parse(&o.grid, grid, NULL, &err), MIMAS_OK);
+    assert_int_equal(mimas_weight_parse(&o.weight, weight, &err), MIMAS_OK);
+    o.grid_none = !strcmp(grid, "none");
+    mimas_average *a;
+    assert_int_equal(mimas_average_create(&a, &o, &err), MIMAS_OK);
+    if (mimas_average_add(a, f, &err))
+        fail_msg("%s", err.msg);
+    return a;
+}
+
+static double max_abs(const double *T, int n)
+{
+    double m = 0;
+    for (int k = 0; k < n; k++)
+        m = fmax(m, fabs(T[k]));
+    return m;
+}
+
+/* cstress of --grid none equals (1/V) sum f (x) (r_i - r_j); and the sum over
+ * a bin grid of V_cell cstress equals the same total (exact segment
+ * splitting, periodic images included). */
+static void check_stress_identity(const char *atoms, const char *pgl)
+{
+    mimas_frame f;
+    mimas_frame_init(&f);
+    last_frame(atoms, pgl, &f);
+    double T[9];
+    direct_contact_sum(&f, T);
+    double V = (f.box.hi[0] - f.box.lo[0]) * (f.box.hi[1] - f.box.lo[1]) *
+               (f.box.hi[2] - f.box.lo[2]);
+    double scale = max_abs(T, 9);
+    assert_true(scale > 0);
+    mimas_average *a = average_frame(&f, "none", "bins");
+    double S[NSUMS];
+    mimas_average_sums(a, 0, S);
+    for (int k = 0; k < 9; k++)
+        assert_close(S[S_C + k] * V, T[k], 1e-12 * scale);
+    mimas_average_free(a);
+
+    char grid[512];
+    snprintf(grid, sizeof grid, "x=%.17g:%.17g:3,y=%.17g:%.17g:4,z=%.17g:%.17g:5", f.box.lo[0],
+             f.box.hi[0], f.box.lo[1], f.box.hi[1], f.box.lo[2], f.box.hi[2]);
+    a = average_frame(&f, grid, "bins");
+    double total[9] = {0};
+    const mimas_grid *g = mimas_average_grid(a);
+    for (size_t c = 0; c < mimas_grid_cells(g); c++) {
+        mimas_average_sums(a, c, S);
+        for (int k = 0; k < 9; k++)
+            total[k] += S[S_C + k] * mimas_grid_cell_volume(g, c);
+    }
+    for (int k = 0; k < 9; k++)
+        assert_close(total[k], T[k], 1e-12 * scale);
+    mimas_average_free(a);
+    mimas_frame_free(&f);
+}
+
+static void test_stress_identity_triclinic(void **state)
+{
+    (void)state;
+    check_stress_identity(data("triclinic/dump.triclinic_complete.atom"),
+                          data("triclinic/dump.triclinic_complete.pgl"));
+}
+
+static void test_stress_identity_periodic(void **state)
+{
+    (void)state;
+    check_stress_identity(data("periodic_box/dump.periodic.atom.gz"),
+                          data("periodic_box/dump.periodic.pgl.gz"));
+}
+
+/* LIGGGHTS' compute stress/atom: per atom -m v (x) v - 1/2 sum (x1 - x2) (x) F1
+ * (stress times volume, compression negative; tests/data/liggghts/README.md),
+ * so -sum_atoms (c_stress + m v v) = sum_contacts (x1 - x2) (x) F1; mimas'
+ * V cstress holds F1 (x) (x1 - x2), the transpose.  6 printed digits. */
+static void test_matches_liggghts_stress_atom(void **state)
+{
+    (void)state;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    last_frame(data("periodic_box/dump.periodic.atom.gz"),
+               data("periodic_box/dump.periodic.pgl.gz"), &f);
+    const mimas_particles *p = &f.particles;
+    assert_string_equal(p->extra[0].name, "c_stress");
+    static const int comp[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
+    double pair[6] = {0};
+    for (size_t i = 0; i < p->n; i++)
+        for (int c = 0; c < 6; c++)
+            pair[c] -= p->extra[0].data[6 * i + (size_t)c] +
+                       p->mass[i] * p->vel[i][comp[c][0]] * p->vel[i][comp[c][1]];
+    mimas_average *a = average_frame(&f, "none", "bins");
+    double S[NSUMS];
+    mimas_average_sums(a, 0, S);
+    double V = mimas_box_volume(&f.box);
+    double scale = max_abs(pair, 6);
+    for (int c = 0; c < 6; c++) {
+        int x = comp[c][0], y = comp[c][1];
+        /* (x1 - x2)_x F_y is mimas' [y][x] entry */
+        assert_close(S[S_C + 3 * y + x] * V, pair[c], 2e-5 * scale);
+    }
+    /* the kinetic part: sum m (v - V)(x)(v - V) / V_box, V the mass-weighted mean */
+    double M = 0, P[3] = {0};
+    for (size_t i = 0; i < p->n; i++) {
+        M += p->mass[i];
+        for (int d = 0; d < 3; d++)
+            P[d] += p->mass[i] * p->vel[i][d];
+    }
+    double K[6] = {0};
+    for (size_t i = 0; i < p->n; i++)
+        for (int c = 0; c < 6; c++)
+            K[c] += p->mass[i] * (p->vel[i][comp[c][0]] - P[comp[c][0]] / M) *
+                    (p->vel[i][comp[c][1]] - P[comp[c][1]] / M) / V;
+    double out[128];
+    mimas_average_cell(a, 0, out, NULL, NULL);
+    /* kstress_xx .. kstress_yz follow the 6 stress columns */
+    size_t ks = 0;
+    while (strcmp(mimas_field_name(ks, 0) ? mimas_field_name(ks, 0) : "", "kstress_xx"))
+        ks++;
+    double kscale = max_abs(K, 6);
+    for (int c = 0; c < 6; c++)
+        assert_close(out[ks + (size_t)c], K[c], 1e-12 * kscale);
+    mimas_average_free(a);
+    mimas_frame_free(&f);
+}
+
+/* A frame of particles given by the test, with velocities v(x). */
+static void make_frame(mimas_frame *f, size_t n, const double (*pos)[3], double R,
+                       void (*vel)(const double x[3], double v[3]), const mimas_box *box)
+{
+    mimas_error err;
+    mimas_frame_clear(f);
+    mimas_table_set_present(&f->particles, &mimas_particles_desc,
+                            MIMAS_P_RADIUS | MIMAS_P_MASS | MIMAS_P_VEL, &err);
+    mimas_table_resize(&f->particles, &mimas_particles_desc, n, &err);
+    for (size_t k = 0; k < n; k++) {
+        f->particles.id[k] = (int64_t)k + 1;
+        memcpy(f->particles.pos[k], pos[k], sizeof pos[k]);
+        f->particles.radius[k] = R;
+        f->particles.mass[k] = 1000.0 * 4.0 / 3.0 * M_PI * R * R * R;
+        vel(pos[k], f->particles.vel[k]);
+    }
+    f->box = *box;
+}
+
+static void still(const double x[3], double v[3])
+{
+    (void)x;
+    v[0] = v[1] = v[2] = 0;
+}
+
+/* Simple cubic packing of touching spheres (R = a/2): nu = pi/6 in every cell
+ * whose edges are whole multiples of a, wherever the cell edges cut. */
+static void test_simple_cubic_solid_fraction(void **state)
+{
+    (void)state;
+    const int m = 10;
+    const double a = 0.002;
+    double (*pos)[3] = malloc(sizeof *pos * m * m * m);
+    size_t n = 0;
+    for (int i = 0; i < m; i++)
+        for (int j = 0; j < m; j++)
+            for (int k = 0; k < m; k++) {
+                pos[n][0] = (i + 0.5) * a;
+                pos[n][1] = (j + 0.5) * a;
+                pos[n][2] = (k + 0.5) * a;
+                n++;
+            }
+    mimas_box box = {{0, 0, 0}, {m * a, m * a, m * a}, 0, 0, 0, {1, 1, 1}};
+    mimas_frame f;
+    mimas_frame_init(&f);
+    make_frame(&f, n, (const double (*)[3])pos, 0.5 * a, still, &box);
+    /* cells of 2a x 2a x 2a, starting 0.3a off the lattice: they cut spheres */
+    char grid[256];
+    snprintf(grid, sizeof grid, "x=%.17g:%.17g:4,y=%.17g:%.17g:4,z=%.17g:%.17g:4", 0.3 * a,
+             8.3 * a, 0.3 * a, 8.3 * a, 0.3 * a, 8.3 * a);
+    mimas_average *av = average_frame(&f, grid, "bins");
+    double S[NSUMS];
+    for (size_t c = 0; c < 64; c++) {
+        mimas_average_sums(av, c, S);
+        assert_close(S[S_V], M_PI / 6.0, 1e-12);
+    }
+    mimas_average_free(av);
+    mimas_frame_free(&f);
+    free(pos);
+}
+
+/* A Gaussian grid integrates rho to the total mass. */
+static void test_gauss_integrates_mass(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    const size_t n = 200;
+    double (*pos)[3] = malloc(sizeof *pos * n);
+    for (size_t k = 0; k < n; k++)
+        for (int d = 0; d < 3; d++)
+            pos[k][d] = 0.01 * gsl_rng_uniform(rng);
+    mimas_box box = {{0, 0, 0}, {0.01, 0.01, 0.01}, 0, 0, 0, {0, 0, 0}};
+    mimas_frame f;
+    mimas_frame_init(&f);
+    make_frame(&f, n, (const double (*)[3])pos, 0.0005, still, &box);
+    double total = 0;
+    for (size_t k = 0; k < n; k++)
+        total += f.particles.mass[k];
+    /* w = 1 mm, cutoff 5 w, the grid reaches 5 w beyond the box, spacing w/2.
+     * (The cut Gaussian jumps at the cutoff, which limits a midpoint sum: with
+     * the default cutoff 3 w the sum is off by ~1e-5.) */
+    mimas_average *av = average_frame(&f, "x=-0.00525:0.01525:41,y=-0.00525:0.01525:41,"
+                                          "z=-0.00525:0.01525:41", "gauss:w=0.001,cutoff=5");
+    const mimas_grid *g = mimas_average_grid(av);
+    double mass = 0, S[NSUMS];
+    for (size_t c = 0; c < mimas_grid_cells(g); c++) {
+        mimas_average_sums(av, c, S);
+        mass += S[S_M] * mimas_grid_cell_volume(g, c);
+    }
+    assert_close(mass, total, 1e-6 * total);
+    mimas_average_free(av);
+    mimas_frame_free(&f);
+    free(pos);
+    gsl_rng_free(rng);
+}
+
+/* Rigid rotation v = Omega x r about the z axis: on a cylindrical grid
+ * v_phi = Omega rho and omega = Omega for particles on the ring centres. */
+static const double OMEGA = 0.7;
+static void rotation(const double x[3], double v[3])
+{
+    v[0] = -OMEGA * x[1];
+    v[1] = OMEGA * x[0];
+    v[2] = 0;
+}
+
+static void test_rigid_rotation(void **state)
+{
+    (void)state;
+    const int rings = 5, per_ring = 40;
+    double (*pos)[3] = malloc(sizeof *pos * rings * per_ring);
+    size_t n = 0;
+    for (int r = 0; r < rings; r++)
+        for (int k = 0; k < per_ring; k++) {
+            double rho = 0.01 * (r + 0.5), th = 2 * M_PI * (k + 0.3) / per_ring;
+            pos[n][0] = rho * cos(th);
+            pos[n][1] = rho * sin(th);
+            pos[n][2] = 0.005;
+            n++;
+        }
+    mimas_box box = {{-0.06, -0.06, 0}, {0.06, 0.06, 0.01}, 0, 0, 0, {0, 0, 0}};
+    mimas_frame f;
+    mimas_frame_init(&f);
+    /* R = 1 mm: every sphere lies inside its ring of width 10 mm */
+    make_frame(&f, n, (const double (*)[3])pos, 0.001, rotation, &box);
+    mimas_average *av = average_frame(&f, "r=0:0.05:5,z=0:0.01:1", "bins");
+    double out[128];
+    size_t vphi = 0, om = 0, vr = 0;
+    for (size_t k = 0; k < mimas_fields_count(); k++) {
+        const char *nm = mimas_field_name(k, 1);
+        if (nm && !strcmp(nm, "v_phi"))
+            vphi = k;
+        if (nm && !strcmp(nm, "omega"))
+            om = k;
+        if (nm && !strcmp(nm, "v_r"))
+            vr = k;
+    }
+    for (size_t c = 0; c < 5; c++) {
+        mimas_average_cell(av, c, out, NULL, NULL);
+        double rho = 0.01 * (c + 0.5);
+        assert_close(out[vphi], OMEGA * rho, 1e-12);
+        assert_close(out[om], OMEGA, 1e-12);
+        assert_close(out[vr], 0.0, 1e-12);
+    }
+    mimas_average_free(av);
+    mimas_frame_free(&f);
+    free(pos);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_stress_identity_triclinic),
+        cmocka_unit_test(test_stress_identity_periodic),
+        cmocka_unit_test(test_matches_liggghts_stress_atom),
+        cmocka_unit_test(test_simple_cubic_solid_fraction),
+        cmocka_unit_test(test_gauss_integrates_mass),
+        cmocka_unit_test(test_rigid_rotation),
+    };
+    return cmocka_run_group_tests_name("average", tests, NULL, NULL);
+}
