@@ -122,10 +122,18 @@ typedef struct particle_ctx {
     double v[3];
 } particle_ctx;
 
-static void add_particle(void *user, size_t cell, double w)
+static void add_particle(void *user, size_t cell, double w, const double *grad)
 {
     particle_ctx *p = user;
     double *S = p->S + cell * NSUMS;
+    if (grad)
+        for (int b = 0; b < 3; b++) {
+            /* gradients of mass and momentum densities, for the analytic
+             * velocity gradient of the Gaussian */
+            S[S_GM + b] += p->m * grad[b];
+            for (int a = 0; a < 3; a++)
+                S[S_GP + 3 * a + b] += p->m * p->v[a] * grad[b];
+        }
     S[S_N] += w;
     S[S_M] += p->m * w;
     S[S_V] += p->vol * w;
@@ -147,8 +155,9 @@ typedef struct contact_ctx {
     double fb[9], nn[9];   /* f (x) b and n (x) n in the local basis */
 } contact_ctx;
 
-static void add_contact(void *user, size_t cell, double w)
+static void add_contact(void *user, size_t cell, double w, const double *grad)
 {
+    (void)grad;
     contact_ctx *c = user;
     double *S = c->S + cell * NSUMS;
     for (int k = 0; k < 9; k++) {
@@ -162,8 +171,9 @@ typedef struct wall_ctx {
     double f[3];
 } wall_ctx;
 
-static void add_wall_force(void *user, size_t cell, double w)
+static void add_wall_force(void *user, size_t cell, double w, const double *grad)
 {
+    (void)grad;
     wall_ctx *c = user;
     for (int k = 0; k < 3; k++)
         c->S[cell * NSUMS + S_W + k] += c->f[k] * w;
@@ -366,23 +376,85 @@ void mimas_average_sums(const mimas_average *a, size_t cell, double *sums)
         sums[k] = a->frames ? a->sum[cell * NSUMS + k] / (double)a->frames : 0.0;
 }
 
-void mimas_average_cell(const mimas_average *a, size_t cell, double *mean, double *sd,
-                        double *count)
+/* d V_a / d x_b of a cell: analytic for the Gaussian on Cartesian grids
+ * (L = (grad j - V (x) grad rho)/rho), else central differences of the
+ * time-averaged velocity over the neighbouring cells (one-sided at the grid's
+ * edges and next to empty cells); zero along directions that are not
+ * gridded.  Cylindrical grids: physical components, column 1 is (1/r) d/dphi. */
+static int velocity_gradient(const mimas_average *a, const double *fields, size_t nf,
+                             size_t cell, const double *S, double L[3][3])
 {
-    double S[NSUMS];
-    mimas_average_sums(a, cell, S);
-    int cyl = a->grid.kind == MIMAS_GRID_CYLINDRICAL && !a->opt.grid_none;
-    double ctr[3] = {0, 0, 0};
-    if (cyl)
-        mimas_grid_cell_centre(&a->grid, cell, ctr);
-    mimas_fields_derive(S, cyl, ctr[0], mean);
-    size_t nf = mimas_fields_count();
-    for (size_t q = 0; q < nf; q++) {
-        size_t at = cell * nf + q;
-        double n = a->opt.spread ? a->f_count[at] : 0;
-        if (sd)
-            sd[q] = n > 1 ? sqrt(a->f_m2[at] / (n - 1)) : NAN;
-        if (count)
-            count[q] = n;
+    const mimas_grid *g = &a->grid;
+    size_t iv = mimas_fields_velocity();
+    const double *V = &fields[cell * nf + iv];
+    if (isnan(V[0]))
+        return 0;
+    if (a->opt.weight.kind == MIMAS_WEIGHT_GAUSS && g->kind == MIMAS_GRID_CARTESIAN) {
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                L[i][j] = (S[S_GP + 3 * i + j] - V[i] * S[S_GM + j]) / S[S_M];
+        return 1;
     }
+    int idx[3];
+    mimas_grid_unindex(g, cell, idx);
+    double ctr[3];
+    mimas_grid_cell_centre(g, cell, ctr);
+    for (int b = 0; b < 3; b++) {
+        for (int i = 0; i < 3; i++)
+            L[i][b] = 0.0;
+        if (!g->gridded[b] || g->n[b] < 2)
+            continue;
+        int lo = idx[b] > 0 ? idx[b] - 1 : idx[b], hi = idx[b] + 1 < g->n[b] ? idx[b] + 1 : idx[b];
+        int nb[3] = {idx[0], idx[1], idx[2]};
+        nb[b] = lo;
+        size_t cl = mimas_grid_index(g, nb);
+        nb[b] = hi;
+        size_t ch = mimas_grid_index(g, nb);
+        if (isnan(fields[cl * nf + iv]))
+            lo = idx[b], cl = cell;
+        if (isnan(fields[ch * nf + iv]))
+            hi = idx[b], ch = cell;
+        if (lo == hi)
+            return 0;
+        double h = (g->hi[b] - g->lo[b]) / g->n[b] * (hi - lo);
+        if (g->kind == MIMAS_GRID_CYLINDRICAL && b == 1)
+            h *= ctr[0]; /* (1/r) d/dphi */
+        for (int i = 0; i < 3; i++)
+            L[i][b] = (fields[ch * nf + iv + (size_t)i] - fields[cl * nf + iv + (size_t)i]) / h;
+    }
+    return 1;
+}
+
+int mimas_average_fields(const mimas_average *a, double *fields, double *sd, double *count)
+{
+    size_t nf = mimas_fields_count();
+    int cyl = a->grid.kind == MIMAS_GRID_CYLINDRICAL && !a->opt.grid_none;
+    double *sums = malloc(a->cells * NSUMS * sizeof *sums);
+    if (!sums)
+        return -1;
+    for (size_t cell = 0; cell < a->cells; cell++) {
+        double *S = &sums[cell * NSUMS];
+        mimas_average_sums(a, cell, S);
+        double ctr[3] = {0, 0, 0};
+        if (cyl)
+            mimas_grid_cell_centre(&a->grid, cell, ctr);
+        mimas_fields_derive(S, cyl, ctr[0], &fields[cell * nf]);
+        for (size_t q = 0; q < nf; q++) {
+            size_t at = cell * nf + q;
+            double n = a->opt.spread ? a->f_count[at] : 0;
+            if (sd)
+                sd[at] = n > 1 ? sqrt(a->f_m2[at] / (n - 1)) : NAN;
+            if (count)
+                count[at] = n;
+        }
+    }
+    for (size_t cell = 0; cell < a->cells && !a->opt.grid_none; cell++) {
+        double L[3][3], ctr[3] = {0, 0, 0};
+        if (cyl)
+            mimas_grid_cell_centre(&a->grid, cell, ctr);
+        if (velocity_gradient(a, fields, nf, cell, &sums[cell * NSUMS], L))
+            mimas_fields_strain(L, &sums[cell * NSUMS], cyl, ctr[0], &fields[cell * nf]);
+    }
+    free(sums);
+    return 0;
 }

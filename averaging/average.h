@@ -34,11 +34,12 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err);
 size_t mimas_average_frames(const mimas_average *a);
 /* The grid with the bounds of the first frame's box filled in. */
 const mimas_grid *mimas_average_grid(const mimas_average *a);
-/* Time-averaged fields of one cell (mimas_fields_count() values), and if the
- * average keeps the spread, the standard deviation over frames and the number
- * of frames in which each field was defined (sd, count may be NULL). */
-void mimas_average_cell(const mimas_average *a, size_t cell, double *mean, double *sd,
-                        double *count);
+/* Time-averaged fields of every cell (cells x mimas_fields_count() values,
+ * cell-major), and if the average keeps the spread, the standard deviation
+ * over frames and the number of frames in which each field was defined
+ * (sd, count may be NULL; the strain-rate fields have none).  Returns 0, or
+ * -1 when out of memory. */
+int mimas_average_fields(const mimas_average *a, double *fields, double *sd, double *count);
 /* The time-averaged primary sums of a cell (NSUMS values, fields.h). */
 void mimas_average_sums(const mimas_average *a, size_t cell, double *sums);
 void mimas_average_free(mimas_average *a);

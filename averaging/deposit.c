@@ -51,10 +51,12 @@ static int index_range(const mimas_grid *g, const double *h, int d, double lo, d
     return *i0 <= *i1;
 }
 
-/* The weight of a sphere (or point, R = 0) in one cell. */
+/* The weight of a sphere (or point, R = 0) in one cell; for the Gaussian on
+ * a Cartesian grid also its gradient (grad set, *has_grad = 1). */
 static double cell_weight_sphere(const mimas_deposit *dp, size_t cell, const double x[3],
-                                 const double a[3], double R)
+                                 const double a[3], double R, double grad[3], int *has_grad)
 {
+    *has_grad = 0;
     const mimas_grid *g = dp->grid;
     double lo[3], hi[3];
     mimas_grid_cell_bounds(g, cell, lo, hi);
@@ -65,6 +67,8 @@ static double cell_weight_sphere(const mimas_deposit *dp, size_t cell, const dou
         mimas_grid_cell_centre(g, cell, c);
         if (g->kind == MIMAS_GRID_CARTESIAN) {
             double d[3] = {c[0] - x[0], c[1] - x[1], c[2] - x[2]};
+            mimas_gauss_grad(dp->wt, d, grad);
+            *has_grad = 1;
             return mimas_gauss_phi(dp->wt, d);
         }
         p[0] = c[0] * cos(c[1]);
@@ -154,9 +158,11 @@ typedef struct sphere_ctx {
 static void visit_sphere(const mimas_deposit *dp, size_t cell, void *ctx)
 {
     sphere_ctx *s = ctx;
-    double w = cell_weight_sphere(dp, cell, s->x, s->a, s->R);
+    double grad[3];
+    int has_grad;
+    double w = cell_weight_sphere(dp, cell, s->x, s->a, s->R, grad, &has_grad);
     if (w != 0.0)
-        s->fn(s->user, cell, w);
+        s->fn(s->user, cell, w, has_grad ? grad : NULL);
 }
 
 void mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, deposit_fn fn,
@@ -164,7 +170,7 @@ void mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, 
 {
     const mimas_grid *g = dp->grid;
     if (dp->none) {
-        fn(user, 0, 1.0 / dp->box_volume);
+        fn(user, 0, 1.0 / dp->box_volume, NULL);
         return;
     }
     int point = dp->wt->kind == MIMAS_WEIGHT_BINS_CENTER ||
@@ -179,9 +185,10 @@ void mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, 
             size_t cell;
             grid_coords(g, a, q);
             if (cell_of(g, dp->h, q, &cell))
-                fn(user, cell, 1.0 / (g->kind == MIMAS_GRID_CARTESIAN
-                                          ? dp->cart_volume
-                                          : mimas_grid_cell_volume(g, cell)));
+                fn(user, cell,
+                   1.0 / (g->kind == MIMAS_GRID_CARTESIAN ? dp->cart_volume
+                                                          : mimas_grid_cell_volume(g, cell)),
+                   NULL);
             continue;
         }
         sphere_ctx ctx = {xs, a, R, fn, user};
@@ -227,7 +234,7 @@ static void visit_segment(const mimas_deposit *dp, size_t cell, void *ctx)
                                                  : mimas_grid_cell_volume(g, cell));
     }
     if (w != 0.0)
-        s->fn(s->user, cell, w);
+        s->fn(s->user, cell, w, NULL);
 }
 
 void mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const double b[3],
@@ -235,7 +242,7 @@ void mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const dou
 {
     const mimas_grid *g = dp->grid;
     if (dp->none) {
-        fn(user, 0, 1.0 / dp->box_volume);
+        fn(user, 0, 1.0 / dp->box_volume, NULL);
         return;
     }
     if (dp->wt->kind == MIMAS_WEIGHT_BINS_CENTER) {

@@ -13,7 +13,9 @@
 #include "grid.h"
 #include "weight.h"
 
-typedef void (*deposit_fn)(void *user, size_t cell, double weight);
+/* grad: the gradient of the weight with respect to the field point (for the
+ * Gaussian, at the cell centre), or NULL where the weight has none (bins) */
+typedef void (*deposit_fn)(void *user, size_t cell, double weight, const double *grad);
 
 typedef struct mimas_deposit {
     const mimas_grid *grid;

@@ -9,7 +9,8 @@
 enum {
     F_N, F_RHO, F_NU, F_V, F_OMEGA = F_V + 3, F_STRESS, F_KSTRESS = F_STRESS + 6,
     F_CSTRESS = F_KSTRESS + 6, F_P = F_CSTRESS + 6, F_TAU, F_TAU_PHI, F_MU, F_T, F_Z, F_ZNR,
-    F_FABRIC, F_D = F_FABRIC + 6, F_WALL, NFIELDS = F_WALL + 3
+    F_FABRIC, F_D = F_FABRIC + 6, F_WALL, F_SHEAR = F_WALL + 3, F_SHEAR_L, F_ETA, F_I,
+    NFIELDS
 };
 
 #define TENSOR(base, unit, meaning)                                                          \
@@ -40,6 +41,12 @@ static const mimas_field_desc fields[NFIELDS] = {
     {"wall_force_x", "wall_force_r", "N m-3", "wall force density sum_w f_w delta(r - c_w)"},
     {"wall_force_y", "wall_force_phi", "N m-3", "wall force density"},
     {"wall_force_z", "wall_force_z", "N m-3", "wall force density"},
+    {"shear_rate", NULL, "s-1", "sqrt(2 D':D'), D' the deviator of D = (grad V + grad V^T)/2"},
+    {"", "shear_rate_luding", "s-1",
+     "0.5 sqrt((dv_phi/dr - v_phi/r)^2 + (dv_phi/dz)^2) (000 eq. 2.13)"},
+    {"eta", NULL, "Pa s", "viscosity tau/shear_rate (undefined where shear_rate = 0)"},
+    {"I", NULL, "1", "inertial number shear_rate d sqrt(rho_p/p), rho_p = rho/nu "
+                     "(undefined where p <= 0)"},
 };
 
 size_t mimas_fields_count(void)
@@ -111,4 +118,39 @@ void mimas_fields_derive(const double *S, int cylindrical, double r, double *out
     out[F_D] = ratio(S[S_D], S[S_N]);
     for (int k = 0; k < 3; k++)
         out[F_WALL + k] = S[S_W + k];
+    out[F_SHEAR] = out[F_SHEAR_L] = out[F_ETA] = out[F_I] = NAN;
+}
+
+size_t mimas_fields_velocity(void)
+{
+    return F_V;
+}
+
+void mimas_fields_strain(const double L[3][3], const double *S, int cylindrical, double r,
+                         double *out)
+{
+    double D[3][3];
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            D[a][b] = 0.5 * (L[a][b] + L[b][a]);
+    if (cylindrical) {
+        /* physical components in (r, phi, z): the basis turns with phi,
+         * D_phiphi += v_r/r and D_rphi -= v_phi/(2r) */
+        double vr = out[F_V], vphi = out[F_V + 1];
+        D[1][1] += vr / r;
+        D[0][1] -= 0.5 * vphi / r;
+        D[1][0] = D[0][1];
+        out[F_SHEAR_L] = 0.5 * sqrt(pow(L[1][0] - vphi / r, 2) + pow(L[1][2], 2));
+    }
+    double tr = (D[0][0] + D[1][1] + D[2][2]) / 3.0, dd = 0;
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) {
+            double x = D[a][b] - (a == b ? tr : 0.0);
+            dd += x * x;
+        }
+    double g = sqrt(2.0 * dd);
+    out[F_SHEAR] = g;
+    out[F_ETA] = g > 0 ? out[F_TAU] / g : NAN;
+    double rho_p = S[S_V] > 0 ? S[S_M] / S[S_V] : NAN;
+    out[F_I] = out[F_P] > 0 ? g * out[F_D] * sqrt(rho_p / out[F_P]) : NAN;
 }

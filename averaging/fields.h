@@ -22,7 +22,9 @@ enum {
     S_NN,           /* sum phi over particles with c_p >= 2 */
     S_D,            /* sum 2 R phi: diameters */
     S_W,            /* 3: sum f_wall delta(r - c): wall force density */
-    NSUMS = S_W + 3
+    S_GM = S_W + 3, /* 3: sum m grad phi (Gaussian weights only) */
+    S_GP = S_GM + 3,/* 9: sum m v_a d_b phi (Gaussian weights only) */
+    NSUMS = S_GP + 9
 };
 
 typedef struct mimas_field_desc {
@@ -39,7 +41,17 @@ const mimas_field_desc *mimas_field(size_t k);
 const char *mimas_field_name(size_t k, int cylindrical);
 /* Computes every derived column from the sums of one cell; r is the cell
  * centre's radius (cylindrical grids).  Undefined values (velocity of an
- * empty cell, mu where p <= 0, ...) are NaN, as docs/fields.md says. */
+ * empty cell, mu where p <= 0, ...) are NaN, as docs/fields.md says.  The
+ * strain-rate columns are left NaN: they need the neighbouring cells
+ * (mimas_fields_strain). */
 void mimas_fields_derive(const double *S, int cylindrical, double r, double *out);
+/* Fills shear_rate, shear_rate_luding, eta and I of one cell from the
+ * velocity gradient L[a][b] = d V_a / d x_b in the cell's (x y z) or
+ * physical cylindrical (r phi z) components, where for cylindrical grids
+ * L[.][1] is (1/r) d/dphi and the curvature terms are added here. */
+void mimas_fields_strain(const double L[3][3], const double *S, int cylindrical, double r,
+                         double *out);
+/* Index of the velocity columns (3 consecutive). */
+size_t mimas_fields_velocity(void);
 
 #endif

@@ -560,12 +560,12 @@ static void piece_eval(quad_piece *q, slice_par *sp, const gsl_function *f)
     double resabs, resasc;
     sp->tm = q->tm;
     sp->th = q->th;
-    gsl_integration_qk21(f, q->a, q->b, &q->res, &q->err, &resabs, &resasc);
+    gsl_integration_qk41(f, q->a, q->b, &q->res, &q->err, &resabs, &resasc);
 }
 
 #define QUAD_LIMIT 96
 
-/* QUADPACK's QAGP strategy with GSL's 21-point Gauss-Kronrod rule: every
+/* QUADPACK's QAGP strategy with GSL's 41-point Gauss-Kronrod rule: every
  * band is one interval to start with, then the interval with the largest
  * error estimate is bisected until the total error estimate is below
  * max(epsabs, epsrel |total|), total = known + the integrals.  (Not

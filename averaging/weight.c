@@ -45,9 +45,16 @@ int mimas_weight_parse(mimas_weight *wt, const char *spec, mimas_error *err)
             rc = mimas_error_set(err, MIMAS_EUSAGE, "gauss needs its width: gauss:w=W");
         if (rc)
             return rc;
-        /* mass of the 3-D Gaussian within radius C w: erf(C/sqrt 2) - sqrt(2/pi) C e^{-C^2/2} */
-        double C = wt->cutoff;
-        wt->norm = 1.0 / (erf(C / M_SQRT2) - sqrt(2.0 / M_PI) * C * exp(-0.5 * C * C));
+        /* The kernel is the Gaussian shifted down by its value at the cutoff,
+         * g(r) = exp(-r^2/2w^2) - exp(-C^2/2) for r < C w, so that it is
+         * continuous there and its analytic gradient is the whole gradient
+         * (a plain cut would add a surface term).  Its integral over space,
+         * in units of (2 pi w^2)^{3/2}:
+         *   erf(C/sqrt 2) - sqrt(2/pi) C e^{-C^2/2} - e^{-C^2/2} (4/3) pi C^3 / (2 pi)^{3/2} */
+        double C = wt->cutoff, tail = exp(-0.5 * C * C);
+        wt->shift = tail;
+        wt->norm = 1.0 / (erf(C / M_SQRT2) - sqrt(2.0 / M_PI) * C * tail -
+                          tail * 4.0 / 3.0 * M_PI * C * C * C / pow(2.0 * M_PI, 1.5));
         return MIMAS_OK;
     }
     return mimas_error_set(err, MIMAS_EUSAGE, "unknown weight '%s' (bins, bins:center, "
@@ -65,14 +72,18 @@ double mimas_gauss_phi(const mimas_weight *wt, const double d[3])
     double w2 = wt->w * wt->w;
     if (r2 >= wt->cutoff * wt->cutoff * w2)
         return 0.0;
-    return wt->norm * exp(-0.5 * r2 / w2) / pow(2.0 * M_PI * w2, 1.5);
+    return wt->norm * (exp(-0.5 * r2 / w2) - wt->shift) / pow(2.0 * M_PI * w2, 1.5);
 }
 
 void mimas_gauss_grad(const mimas_weight *wt, const double d[3], double g[3])
 {
-    double phi = mimas_gauss_phi(wt, d);
+    double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    double w2 = wt->w * wt->w;
+    double e = r2 < wt->cutoff * wt->cutoff * w2
+                   ? wt->norm * exp(-0.5 * r2 / w2) / pow(2.0 * M_PI * w2, 1.5)
+                   : 0.0;
     for (int k = 0; k < 3; k++)
-        g[k] = -phi * d[k] / (wt->w * wt->w);
+        g[k] = -e * d[k] / w2;
 }
 
 /* psi = int_0^1 phi(|d - s b|) ds.  With |d - s b|^2 = a s^2 - 2 c s + e
@@ -103,5 +114,7 @@ double mimas_gauss_line(const mimas_weight *wt, const double d[3], const double 
     /* erf(u1) - erf(u0) without cancellation when both lie in one tail */
     double diff = u0 > 0 ? erfc(u0) - erfc(u1) : (u1 < 0 ? erfc(-u1) - erfc(-u0) : erf(u1) - erf(u0));
     double integral = exp(-0.5 * h2 / (w * w)) * sqrt(M_PI / 2.0) * w / sqrt(a) * diff;
+    /* minus the shift over the part of the segment inside the cutoff */
+    integral -= wt->shift * (s1 - s0);
     return wt->norm * integral / pow(2.0 * M_PI * w * w, 1.5);
 }

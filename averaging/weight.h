@@ -20,14 +20,16 @@ typedef struct mimas_weight {
     mimas_weight_kind kind;
     double w;        /* Gaussian standard deviation */
     double cutoff;   /* in units of w (default 3) */
-    double norm;     /* 1 / integral of the cut Gaussian (renormalisation) */
+    double shift;    /* exp(-cutoff^2/2): the kernel is shifted to 0 at the cutoff */
+    double norm;     /* 1 / integral of the cut, shifted Gaussian (renormalisation) */
 } mimas_weight;
 
 /* "bins", "bins:center", "gauss:w=W[,cutoff=C]". */
 int mimas_weight_parse(mimas_weight *wt, const char *spec, mimas_error *err);
 
-/* The Gaussian coarse-graining function at distance vector d (zero beyond the
- * cutoff), normalised so that its integral over space is 1. */
+/* The Gaussian coarse-graining function at distance vector d: the Gaussian
+ * of standard deviation w shifted down by its value at the cutoff (so it is
+ * continuous, zero from the cutoff on), normalised to integral 1. */
 double mimas_gauss_phi(const mimas_weight *wt, const double d[3]);
 /* Its gradient with respect to the field point (d = r - r_i). */
 void mimas_gauss_grad(const mimas_weight *wt, const double d[3], double g[3]);

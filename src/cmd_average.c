@@ -124,9 +124,13 @@ static int choose_fields(average_args *a, int cyl, unsigned char *want)
     return rc;
 }
 
-static void print_value(FILE *out, double v)
+/* Full precision; "nan" where a field is undefined (docs/fields.md). */
+static void print_value(FILE *out, const char *sep, double v)
 {
-    fprintf(out, isnan(v) ? "\tnan" : "\t%.17g", v);
+    if (isnan(v))
+        fprintf(out, "%snan", sep);
+    else
+        fprintf(out, "%s%.17g", sep, v);
 }
 
 static int write_table(FILE *out, const mimas_average *avg, int grid_none, int cyl,
@@ -134,53 +138,50 @@ static int write_table(FILE *out, const mimas_average *avg, int grid_none, int c
 {
     const mimas_grid *g = mimas_average_grid(avg);
     size_t nf = mimas_fields_count();
-    double *mean = malloc(nf * sizeof *mean), *sd = malloc(nf * sizeof *sd),
-           *count = malloc(nf * sizeof *count);
-    if (!mean || !sd || !count) {
+    size_t cells = grid_none ? 1 : mimas_grid_cells(g);
+    double *mean = malloc(cells * nf * sizeof *mean), *sd = malloc(cells * nf * sizeof *sd),
+           *count = malloc(cells * nf * sizeof *count);
+    int rc = mean && sd && count ? mimas_average_fields(avg, mean, sd, count) : -1;
+    if (rc) {
         free(mean);
         free(sd);
         free(count);
         return -1;
     }
     /* header: the gridded coordinates, then the fields */
-    int first = 1;
+    const char *sep = "";
     for (int d = 0; d < 3 && !grid_none; d++)
         if (g->gridded[d]) {
-            fprintf(out, "%s%s", first ? "" : "\t", mimas_grid_coord_name(g, d));
-            first = 0;
+            fprintf(out, "%s%s", sep, mimas_grid_coord_name(g, d));
+            sep = "\t";
         }
     for (size_t k = 0; k < nf; k++) {
         if (!want[k])
             continue;
-        fprintf(out, "%s%s", first ? "" : "\t", mimas_field_name(k, cyl));
-        first = 0;
+        fprintf(out, "%s%s", sep, mimas_field_name(k, cyl));
+        sep = "\t";
         if (errors)
             fprintf(out, "\t%s_sem", mimas_field_name(k, cyl));
     }
     fputc('\n', out);
-    size_t cells = grid_none ? 1 : mimas_grid_cells(g);
     for (size_t cell = 0; cell < cells; cell++) {
-        mimas_average_cell(avg, cell, mean, sd, count);
         double ctr[3];
         if (!grid_none)
             mimas_grid_cell_centre(g, cell, ctr);
-        first = 1;
+        sep = "";
         for (int d = 0; d < 3 && !grid_none; d++)
             if (g->gridded[d]) {
-                fprintf(out, first ? "%.17g" : "\t%.17g", ctr[d]);
-                first = 0;
+                print_value(out, sep, ctr[d]);
+                sep = "\t";
             }
+        const double *m = &mean[cell * nf], *s = &sd[cell * nf], *n = &count[cell * nf];
         for (size_t k = 0; k < nf; k++) {
             if (!want[k])
                 continue;
-            if (first) {
-                fprintf(out, isnan(mean[k]) ? "nan" : "%.17g", mean[k]);
-                first = 0;
-            } else {
-                print_value(out, mean[k]);
-            }
+            print_value(out, sep, m[k]);
+            sep = "\t";
             if (errors)
-                print_value(out, count[k] > 1 ? sd[k] / sqrt(count[k]) : NAN);
+                print_value(out, sep, n[k] > 1 ? s[k] / sqrt(n[k]) : NAN);
         }
         fputc('\n', out);
     }

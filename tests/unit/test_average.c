@@ -204,7 +204,7 @@ static void test_matches_liggghts_stress_atom(void **state)
             K[c] += p->mass[i] * (p->vel[i][comp[c][0]] - P[comp[c][0]] / M) *
                     (p->vel[i][comp[c][1]] - P[comp[c][1]] / M) / V;
     double out[128];
-    mimas_average_cell(a, 0, out, NULL, NULL);
+    assert_int_equal(mimas_average_fields(a, out, NULL, NULL), 0);
     /* kstress_xx .. kstress_yz follow the 6 stress columns */
     size_t ks = 0;
     while (strcmp(mimas_field_name(ks, 0) ? mimas_field_name(ks, 0) : "", "kstress_xx"))
@@ -214,6 +214,18 @@ static void test_matches_liggghts_stress_atom(void **state)
         assert_close(out[ks + (size_t)c], K[c], 1e-12 * kscale);
     mimas_average_free(a);
     mimas_frame_free(&f);
+}
+
+/* Column of a field by name. */
+static size_t col(const char *name, int cyl)
+{
+    for (size_t k = 0; k < mimas_fields_count(); k++) {
+        const char *n = mimas_field_name(k, cyl);
+        if (n && !strcmp(n, name))
+            return k;
+    }
+    fail_msg("no field %s", name);
+    return 0;
 }
 
 /* A frame of particles given by the test, with velocities v(x). */
@@ -294,11 +306,10 @@ static void test_gauss_integrates_mass(void **state)
     double total = 0;
     for (size_t k = 0; k < n; k++)
         total += f.particles.mass[k];
-    /* w = 1 mm, cutoff 5 w, the grid reaches 5 w beyond the box, spacing w/2.
-     * (The cut Gaussian jumps at the cutoff, which limits a midpoint sum: with
-     * the default cutoff 3 w the sum is off by ~1e-5.) */
-    mimas_average *av = average_frame(&f, "x=-0.00525:0.01525:41,y=-0.00525:0.01525:41,"
-                                          "z=-0.00525:0.01525:41", "gauss:w=0.001,cutoff=5");
+    /* w = 1 mm, the default cutoff 3 w: the grid reaches 3 w beyond the box,
+     * spacing w/3 (a midpoint sum; the kernel's kink at the cutoff limits it) */
+    mimas_average *av = average_frame(&f, "x=-0.0035:0.0135:51,y=-0.0035:0.0135:51,"
+                                          "z=-0.0035:0.0135:51", "gauss:w=0.001");
     const mimas_grid *g = mimas_average_grid(av);
     double mass = 0, S[NSUMS];
     for (size_t c = 0; c < mimas_grid_cells(g); c++) {
@@ -342,7 +353,9 @@ static void test_rigid_rotation(void **state)
     /* R = 1 mm: every sphere lies inside its ring of width 10 mm */
     make_frame(&f, n, (const double (*)[3])pos, 0.001, rotation, &box);
     mimas_average *av = average_frame(&f, "r=0:0.05:5,z=0:0.01:1", "bins");
-    double out[128];
+    double out[5 * 128];
+    assert_int_equal(mimas_average_fields(av, out, NULL, NULL), 0);
+    size_t nf = mimas_fields_count();
     size_t vphi = 0, om = 0, vr = 0;
     for (size_t k = 0; k < mimas_fields_count(); k++) {
         const char *nm = mimas_field_name(k, 1);
@@ -354,12 +367,117 @@ static void test_rigid_rotation(void **state)
             vr = k;
     }
     for (size_t c = 0; c < 5; c++) {
-        mimas_average_cell(av, c, out, NULL, NULL);
         double rho = 0.01 * (c + 0.5);
-        assert_close(out[vphi], OMEGA * rho, 1e-12);
-        assert_close(out[om], OMEGA, 1e-12);
-        assert_close(out[vr], 0.0, 1e-12);
+        assert_close(out[c * nf + vphi], OMEGA * rho, 1e-12);
+        assert_close(out[c * nf + om], OMEGA, 1e-12);
+        assert_close(out[c * nf + vr], 0.0, 1e-12);
+        /* a rigid rotation does not shear */
+        assert_close(out[c * nf + col("shear_rate", 1)], 0.0, 1e-12);
+        assert_close(out[c * nf + col("shear_rate_luding", 1)], 0.0, 1e-12);
     }
+    mimas_average_free(av);
+    mimas_frame_free(&f);
+    free(pos);
+}
+
+/* Couette-like v_phi = C r^2 on rings at the cell centres: d v_phi/dr - v_phi/r
+ * = C r, so shear_rate_luding = C r/2 and shear_rate = sqrt(2 D':D') = C r
+ * (central differences are exact for a quadratic profile). */
+static const double CQ = 3.0;
+static void couette(const double x[3], double v[3])
+{
+    double r = hypot(x[0], x[1]), vphi = CQ * r * r;
+    v[0] = -vphi * x[1] / r;
+    v[1] = vphi * x[0] / r;
+    v[2] = 0;
+}
+
+static void test_couette_shear_rate(void **state)
+{
+    (void)state;
+    const int rings = 8, per_ring = 60;
+    double (*pos)[3] = malloc(sizeof *pos * rings * per_ring);
+    size_t n = 0;
+    for (int r = 0; r < rings; r++)
+        for (int k = 0; k < per_ring; k++) {
+            double rho = 0.01 * (r + 0.5), th = 2 * M_PI * k / per_ring;
+            pos[n][0] = rho * cos(th);
+            pos[n][1] = rho * sin(th);
+            pos[n][2] = 0.005;
+            n++;
+        }
+    mimas_box box = {{-0.1, -0.1, 0}, {0.1, 0.1, 0.01}, 0, 0, 0, {0, 0, 0}};
+    mimas_frame f;
+    mimas_frame_init(&f);
+    make_frame(&f, n, (const double (*)[3])pos, 0.001, couette, &box);
+    mimas_average *av = average_frame(&f, "r=0:0.08:8,z=0:0.01:1", "bins");
+    size_t nf = mimas_fields_count();
+    double *out = malloc(8 * nf * sizeof *out);
+    assert_int_equal(mimas_average_fields(av, out, NULL, NULL), 0);
+    for (size_t c = 1; c + 1 < 8; c++) {
+        double r = 0.01 * (c + 0.5);
+        assert_close(out[c * nf + col("v_phi", 1)], CQ * r * r, 1e-12);
+        assert_close(out[c * nf + col("shear_rate_luding", 1)], 0.5 * CQ * r, 1e-10);
+        assert_close(out[c * nf + col("shear_rate", 1)], CQ * r, 1e-10);
+    }
+    free(out);
+    mimas_average_free(av);
+    mimas_frame_free(&f);
+    free(pos);
+}
+
+/* Simple shear v_x = G y on a lattice: shear_rate = G, with bins (finite
+ * differences) and with the Gaussian (its analytic gradient). */
+static const double GSHEAR = 2.5;
+static void shear(const double x[3], double v[3])
+{
+    v[0] = GSHEAR * x[1];
+    v[1] = v[2] = 0;
+}
+
+static void test_simple_shear(void **state)
+{
+    (void)state;
+    const int m = 16;
+    const double a = 0.001;
+    double (*pos)[3] = malloc(sizeof *pos * m * m * m);
+    size_t n = 0;
+    for (int i = 0; i < m; i++)
+        for (int j = 0; j < m; j++)
+            for (int k = 0; k < m; k++) {
+                pos[n][0] = (i + 0.5) * a;
+                pos[n][1] = (j + 0.5) * a;
+                pos[n][2] = (k + 0.5) * a;
+                n++;
+            }
+    mimas_box box = {{0, 0, 0}, {m * a, m * a, m * a}, 0, 0, 0, {0, 0, 0}};
+    mimas_frame f;
+    mimas_frame_init(&f);
+    make_frame(&f, n, (const double (*)[3])pos, 0.4 * a, shear, &box);
+    size_t nf = mimas_fields_count();
+    /* bins: slabs of y, the profile is linear */
+    mimas_average *av = average_frame(&f, "y=0:0.016:8", "bins");
+    double *out = malloc(64 * nf * sizeof *out);
+    assert_int_equal(mimas_average_fields(av, out, NULL, NULL), 0);
+    for (size_t c = 0; c < 8; c++)
+        assert_close(out[c * nf + col("shear_rate", 0)], GSHEAR, 1e-9);
+    mimas_average_free(av);
+    /* Gaussian: the analytic gradient equals the numerical derivative of the
+     * coarse-grained velocity itself (three points 2e-7 m apart in y, at a
+     * point where the lattice's symmetry leaves only d V_x / d y), and is
+     * close to G (the lattice makes the coarse-grained profile slightly
+     * non-linear at w = a) */
+    const double h = 1e-7, x0 = 8 * a, y0 = 7.3 * a;
+    char grid[256];
+    snprintf(grid, sizeof grid, "x=%.17g:%.17g:1,y=%.17g:%.17g:3,z=%.17g:%.17g:1", x0 - h / 2,
+             x0 + h / 2, y0 - 1.5 * h, y0 + 1.5 * h, x0 - h / 2, x0 + h / 2);
+    av = average_frame(&f, grid, "gauss:w=0.001");
+    assert_int_equal(mimas_average_fields(av, out, NULL, NULL), 0);
+    double numeric = (out[2 * nf + col("v_x", 0)] - out[0 * nf + col("v_x", 0)]) / (2 * h);
+    assert_close(out[1 * nf + col("v_y", 0)], 0.0, 1e-12);
+    assert_close(out[1 * nf + col("shear_rate", 0)], fabs(numeric), 1e-6 * GSHEAR);
+    assert_close(out[1 * nf + col("shear_rate", 0)], GSHEAR, 0.03 * GSHEAR);
+    free(out);
     mimas_average_free(av);
     mimas_frame_free(&f);
     free(pos);
@@ -374,6 +492,8 @@ int main(void)
         cmocka_unit_test(test_simple_cubic_solid_fraction),
         cmocka_unit_test(test_gauss_integrates_mass),
         cmocka_unit_test(test_rigid_rotation),
+        cmocka_unit_test(test_couette_shear_rate),
+        cmocka_unit_test(test_simple_shear),
     };
     return cmocka_run_group_tests_name("average", tests, NULL, NULL);
 }
