@@ -26,10 +26,12 @@ static const cli_option options[] = {
                               "contacts become wall contacts of the others)"},
     {"errors", 0, NULL, "add NAME_sem columns: the standard error over frames"},
     {"tsv", 0, "FILE", "write the table to FILE (default: standard output)"},
+    {"list-fields", 0, NULL, "print the fields with their units and definitions (Markdown) and "
+                             "exit"},
 };
 
 enum { O_GRID, O_WEIGHT, O_FIELDS, O_AXIS, O_FROM, O_TO, O_EVERY, O_TYPES, O_EXCLUDE,
-       O_ERRORS, O_TSV };
+       O_ERRORS, O_TSV, O_LIST };
 
 typedef struct average_args {
     const cli_command *cmd;
@@ -39,7 +41,7 @@ typedef struct average_args {
     long every;
     int32_t types[64];
     size_t ntypes;
-    int exclude, types_given;
+    int exclude, types_given, list;
 } average_args;
 
 static int parse_types(average_args *a, const char *arg, const char *opt)
@@ -88,6 +90,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_EXCLUDE: a->exclude = 1; return parse_types(a, arg, "exclude-types");
     case O_ERRORS: a->errors = 1; return 0;
     case O_TSV: a->tsv = arg; return 0;
+    case O_LIST: a->list = 1; return 0;
     }
     return 1;
 }
@@ -191,6 +194,17 @@ static int write_table(FILE *out, const mimas_average *avg, int grid_none, int c
     return ferror(out) ? -1 : 0;
 }
 
+/* The field table as docs/fields.md shows it. */
+static void list_fields(void)
+{
+    printf("| field (Cartesian) | field (cylindrical) | unit | definition |\n|---|---|---|---|\n");
+    for (size_t k = 0; k < mimas_fields_count(); k++) {
+        const mimas_field_desc *f = mimas_field(k);
+        const char *c = mimas_field_name(k, 0), *y = mimas_field_name(k, 1);
+        printf("| %s | %s | %s | %s |\n", c ? c : "-", y ? y : "-", f->unit, f->meaning);
+    }
+}
+
 static int run(const cli_command *cmd, int argc, char **argv)
 {
     average_args a = {0};
@@ -199,6 +213,11 @@ static int run(const cli_command *cmd, int argc, char **argv)
     cli_inputs in = {0};
     int first;
     int rc = cli_parse(cmd, argc, argv, on_option, &a, &in, &first);
+    if (!rc && a.list) {
+        list_fields();
+        cli_inputs_free(&in);
+        return 0;
+    }
     if (!rc && (!a.grid || !a.weight))
         rc = cli_fail(cmd, 1, "--grid and --weight are required (see mimas average --help)");
     mimas_average_options o;
