@@ -51,37 +51,48 @@ static int index_range(const mimas_grid *g, const double *h, int d, double lo, d
     return *i0 <= *i1;
 }
 
+/* Bounds and centre of the cell with indices idx (no divisions). */
+static void cell_geometry(const mimas_deposit *dp, const int idx[3], double lo[3], double hi[3],
+                          double c[3])
+{
+    const mimas_grid *g = dp->grid;
+    for (int d = 0; d < 3; d++) {
+        lo[d] = g->lo[d] + dp->h[d] * idx[d];
+        hi[d] = idx[d] + 1 == g->n[d] ? g->hi[d] : lo[d] + dp->h[d];
+        c[d] = 0.5 * (lo[d] + hi[d]);
+    }
+}
+
+static double cell_volume(const mimas_deposit *dp, const double lo[3], const double hi[3])
+{
+    if (dp->grid->kind == MIMAS_GRID_CARTESIAN)
+        return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+    return 0.5 * (hi[0] * hi[0] - lo[0] * lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+}
+
 /* The weight of a sphere (or point, R = 0) in one cell; for the Gaussian on
  * a Cartesian grid also its gradient (grad set, *has_grad = 1). */
-static double cell_weight_sphere(const mimas_deposit *dp, size_t cell, const double x[3],
+static double cell_weight_sphere(const mimas_deposit *dp, const int idx[3], const double x[3],
                                  const double a[3], double R, double grad[3], int *has_grad)
 {
-    *has_grad = 0;
     const mimas_grid *g = dp->grid;
-    double lo[3], hi[3];
-    mimas_grid_cell_bounds(g, cell, lo, hi);
-    double V = g->kind == MIMAS_GRID_CARTESIAN ? dp->cart_volume
-                                               : mimas_grid_cell_volume(g, cell);
+    double lo[3], hi[3], c[3];
+    cell_geometry(dp, idx, lo, hi, c);
+    *has_grad = 0;
     if (dp->wt->kind == MIMAS_WEIGHT_GAUSS) {
-        double c[3], p[3];
-        mimas_grid_cell_centre(g, cell, c);
         if (g->kind == MIMAS_GRID_CARTESIAN) {
             double d[3] = {c[0] - x[0], c[1] - x[1], c[2] - x[2]};
-            mimas_gauss_grad(dp->wt, d, grad);
             *has_grad = 1;
-            return mimas_gauss_phi(dp->wt, d);
+            return mimas_gauss_phi_grad(dp->wt, d, grad);
         }
-        p[0] = c[0] * cos(c[1]);
-        p[1] = c[0] * sin(c[1]);
-        p[2] = c[2];
-        double d[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+        double d[3] = {c[0] * cos(c[1]) - a[0], c[0] * sin(c[1]) - a[1], c[2] - a[2]};
         return mimas_gauss_phi(dp->wt, d);
     }
     double vol_p = 4.0 / 3.0 * M_PI * R * R * R;
     double ov = g->kind == MIMAS_GRID_CARTESIAN
                     ? overlap_sphere_box(x, R, lo, hi)
                     : overlap_sphere_cylcell(a, R, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]);
-    return ov / (vol_p * V);
+    return ov / (vol_p * cell_volume(dp, lo, hi));
 }
 
 /* The cell holding a point (grid coordinates q), or 0 if it is off the grid. */
@@ -119,7 +130,7 @@ static void grid_coords(const mimas_grid *g, const double a[3], double q[3])
 /* Calls visit for every cell that may meet the ball of radius reach about
  * the axis-frame point a (all phi cells when the ball holds the axis or the
  * phi range wraps). */
-typedef void (*cell_visit)(const mimas_deposit *dp, size_t cell, void *ctx);
+typedef void (*cell_visit)(const mimas_deposit *dp, size_t cell, const int idx[3], void *ctx);
 static void candidate_cells(const mimas_deposit *dp, const double a[3], double reach,
                             cell_visit visit, void *ctx)
 {
@@ -145,7 +156,21 @@ static void candidate_cells(const mimas_deposit *dp, const double a[3], double r
     for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
         for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++)
             for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++)
-                visit(dp, mimas_grid_index(g, idx), ctx);
+                visit(dp, mimas_grid_index(g, idx), idx, ctx);
+}
+
+/* Whether an image of an object with Cartesian bounding box [lo, hi], shifted
+ * by shift s, can reach a Cartesian grid (a quick test before the cell
+ * search; cylindrical grids are searched for every image). */
+static int image_reaches(const mimas_deposit *dp, int s, const double lo[3], const double hi[3])
+{
+    const mimas_grid *g = dp->grid;
+    if (g->kind != MIMAS_GRID_CARTESIAN)
+        return 1;
+    for (int d = 0; d < 3; d++)
+        if (hi[d] + dp->shift[s][d] < g->lo[d] || lo[d] + dp->shift[s][d] > g->hi[d])
+            return 0;
+    return 1;
 }
 
 typedef struct sphere_ctx {
@@ -155,12 +180,12 @@ typedef struct sphere_ctx {
     void *user;
 } sphere_ctx;
 
-static void visit_sphere(const mimas_deposit *dp, size_t cell, void *ctx)
+static void visit_sphere(const mimas_deposit *dp, size_t cell, const int idx[3], void *ctx)
 {
     sphere_ctx *s = ctx;
     double grad[3];
     int has_grad;
-    double w = cell_weight_sphere(dp, cell, s->x, s->a, s->R, grad, &has_grad);
+    double w = cell_weight_sphere(dp, idx, s->x, s->a, s->R, grad, &has_grad);
     if (w != 0.0)
         s->fn(s->user, cell, w, has_grad ? grad : NULL);
 }
@@ -176,7 +201,11 @@ void mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, 
     int point = dp->wt->kind == MIMAS_WEIGHT_BINS_CENTER ||
                 (dp->wt->kind == MIMAS_WEIGHT_BINS && !(R > 0));
     double reach = dp->wt->kind == MIMAS_WEIGHT_GAUSS ? mimas_weight_reach(dp->wt) : R;
+    double blo[3] = {x[0] - reach, x[1] - reach, x[2] - reach};
+    double bhi[3] = {x[0] + reach, x[1] + reach, x[2] + reach};
     for (int s = 0; s < dp->nshift; s++) {
+        if (!image_reaches(dp, s, blo, bhi))
+            continue;
         double xs[3] = {x[0] + dp->shift[s][0], x[1] + dp->shift[s][1], x[2] + dp->shift[s][2]};
         double a[3];
         mimas_grid_to_axis(g, xs, a);
@@ -203,14 +232,14 @@ typedef struct segment_ctx {
     void *user;
 } segment_ctx;
 
-static void visit_segment(const mimas_deposit *dp, size_t cell, void *ctx)
+static void visit_segment(const mimas_deposit *dp, size_t cell, const int idx[3], void *ctx)
 {
     segment_ctx *s = ctx;
     const mimas_grid *g = dp->grid;
-    double w;
+    double lo[3], hi[3], c[3], w;
+    cell_geometry(dp, idx, lo, hi, c);
     if (dp->wt->kind == MIMAS_WEIGHT_GAUSS) {
-        double c[3], p[3];
-        mimas_grid_cell_centre(g, cell, c);
+        double p[3];
         if (g->kind == MIMAS_GRID_CARTESIAN)
             memcpy(p, c, sizeof p);
         else {
@@ -224,14 +253,11 @@ static void visit_segment(const mimas_deposit *dp, size_t cell, void *ctx)
         double br[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
         w = mimas_gauss_line(dp->wt, d, br);
     } else {
-        double lo[3], hi[3];
-        mimas_grid_cell_bounds(g, cell, lo, hi);
         double f = g->kind == MIMAS_GRID_CARTESIAN
                        ? segment_fraction_box(s->a, s->b, lo, hi)
                        : segment_fraction_cylcell(s->aa, s->ab, lo[0], hi[0], lo[1], hi[1], lo[2],
                                                   hi[2]);
-        w = f / (g->kind == MIMAS_GRID_CARTESIAN ? dp->cart_volume
-                                                 : mimas_grid_cell_volume(g, cell));
+        w = f / cell_volume(dp, lo, hi);
     }
     if (w != 0.0)
         s->fn(s->user, cell, w, NULL);
@@ -254,7 +280,15 @@ void mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const dou
     double half = 0.5 * sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
                              (b[2] - a[2]) * (b[2] - a[2]));
     double reach = half + mimas_weight_reach(dp->wt);
+    double blo[3], bhi[3];
+    for (int d = 0; d < 3; d++) {
+        double m = 0.5 * (a[d] + b[d]);
+        blo[d] = m - reach;
+        bhi[d] = m + reach;
+    }
     for (int s = 0; s < dp->nshift; s++) {
+        if (!image_reaches(dp, s, blo, bhi))
+            continue;
         double as[3], bs[3], aa[3], ab[3], mid[3], am[3];
         for (int d = 0; d < 3; d++) {
             as[d] = a[d] + dp->shift[s][d];

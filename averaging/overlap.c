@@ -275,16 +275,18 @@ static int disk_wedge(const cylcell *g, double px, double py, double d, double r
     return in_wedge(g, px, py) ? W_INSIDE : W_OUTSIDE;
 }
 
-/* beta - sin(beta), accurate for small beta */
+/* beta - sin(beta), accurate for small beta (Taylor series to beta^17) */
 static double bms(double x)
 {
     if (fabs(x) < 0.5) {
-        double x2 = x * x, term = x * x2 / 6.0, s = 0.0;
-        for (int k = 2; k < 18 && term != 0.0; k += 2) {
-            s += term;
-            term *= -x2 / ((k + 2.0) * (k + 3.0));
-        }
-        return s;
+        double y = x * x;
+        return x * y *
+               (1.0 / 6 -
+                y * (1.0 / 120 -
+                     y * (1.0 / 5040 -
+                          y * (1.0 / 362880 -
+                               y * (1.0 / 39916800 -
+                                    y * (1.0 / 6227020800 - y / 1307674368000.0))))));
     }
     return x - sin(x);
 }
@@ -363,7 +365,7 @@ typedef struct disk_view {
     double px, py, d;
     double ux, uy;            /* p / d */
     double s[2], cc[2];       /* ray k: p = s[k] e_k + cc[k] (e_k turned by +90 degrees) */
-    double eb[2];             /* direction of ray k seen from the axis, from u */
+    double eb[2], feb[2];     /* direction of ray k seen from the axis, from u; bms() */
     double ex[2], ey[2];      /* ray k's unit vector in the frame (u, v) */
 } disk_view;
 
@@ -382,6 +384,7 @@ static void view_setup(disk_view *v, const cylcell *g, double px, double py, dou
         v->ex[k] = v->ux * e[k][0] + v->uy * e[k][1];
         v->ey[k] = v->ux * e[k][1] - v->uy * e[k][0];
         v->eb[k] = atan2(v->ey[k], v->ex[k]);
+        v->feb[k] = bms(v->eb[k]);
     }
 }
 
@@ -427,16 +430,33 @@ static double disk_cell_area(const disk_view *v, double rho)
     double tau[8];
     int nt = 0;
     double sum = 0.0;
+    /* the side of ray k's line: s_k = (e_k x q) along the circle
+     * q = p + rho (cos tau, sin tau) changes sign at two angles lo < hi;
+     * pos_in[k]: s_k > 0 for lo < tau < hi */
+    double lo[2] = {0.0, 0.0}, hi[2] = {0.0, 0.0};
+    int pos_in[2];
     for (int k = 0; k < 2; k++) {
         double cc = v->cc[k], s = v->s[k];
-        if (!(fabs(cc) < rho))
+        if (!(fabs(cc) < rho)) {
+            pos_in[k] = cc < 0.0; /* no crossing: the empty (lo, hi) is "in" */
             continue;
+        }
         double hh = sqrt((rho - cc) * (rho + cc));
         /* the ray's line crosses the circle at s +- hh along the ray:
          * X - p = +-hh e - cc w, in the frame of u */
         double ex = v->ex[k], ey = v->ey[k];
-        tau[nt++] = atan2(hh * ey - cc * ex, hh * ex + cc * ey);
-        tau[nt++] = atan2(-hh * ey - cc * ex, -hh * ex + cc * ey);
+        double ta = atan2(hh * ey - cc * ex, hh * ex + cc * ey);
+        double tz = atan2(-hh * ey - cc * ex, -hh * ex + cc * ey);
+        lo[k] = fmin(ta, tz);
+        hi[k] = fmax(ta, tz);
+        tau[nt++] = ta;
+        tau[nt++] = tz;
+        /* s_k at tau = 0 and tau = pi; the larger in magnitude decides */
+        double s0 = cc - rho * ey, spi = cc + rho * ey;
+        if (fabs(s0) >= fabs(spi))
+            pos_in[k] = (lo[k] < 0.0 && 0.0 < hi[k]) ? s0 > 0.0 : !(s0 > 0.0);
+        else
+            pos_in[k] = !(spi > 0.0);
         /* the ray segment r0 <= s <= r1 inside the disk; ray 0 runs outwards
          * along the boundary, ray 1 inwards */
         double sa = fmax(r0, s - hh), sb = fmin(r1, s + hh);
@@ -455,10 +475,9 @@ static double disk_cell_area(const disk_view *v, double rho)
         if (next > prev) {
             double tm = 0.5 * (prev + next), am = fabs(tm);
             if (am >= t1 && am <= t0) {
-                double ct = cos(tm), st = sin(tm);
-                double qx = v->px + rho * (ct * v->ux - st * v->uy);
-                double qy = v->py + rho * (ct * v->uy + st * v->ux);
-                if (in_wedge(g, qx, qy))
+                int in0 = (lo[0] < tm && tm < hi[0]) ? pos_in[0] : !pos_in[0];
+                int in1 = (lo[1] < tm && tm < hi[1]) ? !pos_in[1] : pos_in[1];
+                if (g->wide ? (in0 || in1) : (in0 && in1))
                     arcs += next - prev;
             }
         }
@@ -471,16 +490,19 @@ static double disk_cell_area(const disk_view *v, double rho)
         double r = k == 0 ? r1 : r0, b = k == 0 ? b1 : b0;
         if (!(b > 0.0))
             continue;
-        double bk[4] = {v->eb[0], v->eb[1]};
+        double bk[4] = {v->eb[0], v->eb[1]}, fk[4] = {v->feb[0], v->feb[1]};
         int nb = 2;
-        if (b < PI)
-            bk[nb++] = b, bk[nb++] = -b;
-        sort_doubles(bk, nb);
-        double bprev = -PI, fprev = bms(-PI), part = 0.0;
+        if (b < PI) {
+            double fb = bms(b);
+            bk[nb] = b, fk[nb++] = fb;
+            bk[nb] = -b, fk[nb++] = -fb;
+        }
+        sort_pairs(bk, fk, nb);
+        double bprev = -PI, fprev = -PI, part = 0.0; /* bms(-pi) = -pi */
         for (int i = 0; i <= nb; i++) {
-            double next = i < nb ? bk[i] : PI;
+            double next = i < nb ? bk[i] : PI, fnext = i < nb ? fk[i] : PI;
             if (next > bprev) {
-                double fnext = bms(next), bm = 0.5 * (bprev + next);
+                double bm = 0.5 * (bprev + next);
                 if (fabs(bm) <= b && beta_in_wedge(v, bm))
                     part += r * (r - d) * (next - bprev) + r * d * (fnext - fprev);
                 fprev = fnext;

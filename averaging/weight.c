@@ -55,6 +55,9 @@ int mimas_weight_parse(mimas_weight *wt, const char *spec, mimas_error *err)
         wt->shift = tail;
         wt->norm = 1.0 / (erf(C / M_SQRT2) - sqrt(2.0 / M_PI) * C * tail -
                           tail * 4.0 / 3.0 * M_PI * C * C * C / pow(2.0 * M_PI, 1.5));
+        wt->coef = wt->norm / pow(2.0 * M_PI * wt->w * wt->w, 1.5);
+        wt->inv2w2 = 0.5 / (wt->w * wt->w);
+        wt->reach2 = C * C * wt->w * wt->w;
         return MIMAS_OK;
     }
     return mimas_error_set(err, MIMAS_EUSAGE, "unknown weight '%s' (bins, bins:center, "
@@ -69,21 +72,23 @@ double mimas_weight_reach(const mimas_weight *wt)
 double mimas_gauss_phi(const mimas_weight *wt, const double d[3])
 {
     double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    double w2 = wt->w * wt->w;
-    if (r2 >= wt->cutoff * wt->cutoff * w2)
+    if (r2 >= wt->reach2)
         return 0.0;
-    return wt->norm * (exp(-0.5 * r2 / w2) - wt->shift) / pow(2.0 * M_PI * w2, 1.5);
+    return wt->coef * (exp(-r2 * wt->inv2w2) - wt->shift);
 }
 
-void mimas_gauss_grad(const mimas_weight *wt, const double d[3], double g[3])
+double mimas_gauss_phi_grad(const mimas_weight *wt, const double d[3], double g[3])
 {
     double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    double w2 = wt->w * wt->w;
-    double e = r2 < wt->cutoff * wt->cutoff * w2
-                   ? wt->norm * exp(-0.5 * r2 / w2) / pow(2.0 * M_PI * w2, 1.5)
-                   : 0.0;
-    for (int k = 0; k < 3; k++)
-        g[k] = -e * d[k] / w2;
+    if (r2 >= wt->reach2) {
+        g[0] = g[1] = g[2] = 0.0;
+        return 0.0;
+    }
+    double e = wt->coef * exp(-r2 * wt->inv2w2);
+    double k = -2.0 * e * wt->inv2w2; /* d/dd of exp(-d^2/2w^2) */
+    for (int m = 0; m < 3; m++)
+        g[m] = k * d[m];
+    return e - wt->coef * wt->shift;
 }
 
 /* psi = int_0^1 phi(|d - s b|) ds.  With |d - s b|^2 = a s^2 - 2 c s + e
@@ -116,5 +121,5 @@ double mimas_gauss_line(const mimas_weight *wt, const double d[3], const double 
     double integral = exp(-0.5 * h2 / (w * w)) * sqrt(M_PI / 2.0) * w / sqrt(a) * diff;
     /* minus the shift over the part of the segment inside the cutoff */
     integral -= wt->shift * (s1 - s0);
-    return wt->norm * integral / pow(2.0 * M_PI * w * w, 1.5);
+    return wt->coef * integral;
 }

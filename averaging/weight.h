@@ -22,6 +22,9 @@ typedef struct mimas_weight {
     double cutoff;   /* in units of w (default 3) */
     double shift;    /* exp(-cutoff^2/2): the kernel is shifted to 0 at the cutoff */
     double norm;     /* 1 / integral of the cut, shifted Gaussian (renormalisation) */
+    double coef;     /* norm / (2 pi w^2)^{3/2} */
+    double inv2w2;   /* 1 / (2 w^2) */
+    double reach2;   /* (cutoff w)^2 */
 } mimas_weight;
 
 /* "bins", "bins:center", "gauss:w=W[,cutoff=C]". */
@@ -31,8 +34,8 @@ int mimas_weight_parse(mimas_weight *wt, const char *spec, mimas_error *err);
  * of standard deviation w shifted down by its value at the cutoff (so it is
  * continuous, zero from the cutoff on), normalised to integral 1. */
 double mimas_gauss_phi(const mimas_weight *wt, const double d[3]);
-/* Its gradient with respect to the field point (d = r - r_i). */
-void mimas_gauss_grad(const mimas_weight *wt, const double d[3], double g[3]);
+/* Its value and gradient with respect to the field point (d = r - r_i). */
+double mimas_gauss_phi_grad(const mimas_weight *wt, const double d[3], double g[3]);
 /* The line integral psi = int_0^1 phi(d - s b) ds, d = r - r_j, b = r_i - r_j,
  * in closed form with erf, restricted to the part of the segment within the
  * cutoff. */
