@@ -5,6 +5,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "deposit.h"
 #include "fields.h"
@@ -15,6 +18,8 @@ struct mimas_average {
     size_t cells, frames;
     double *sum;            /* cells x NSUMS, summed over frames */
     double *frame_sum;      /* cells x NSUMS, this frame */
+    double *thread_sum;     /* threads x cells x NSUMS (more than one thread) */
+    int threads;
     /* per-frame field statistics (Welford), cells x nfields each */
     double *f_mean, *f_m2, *f_count;
     double *scratch;        /* nfields */
@@ -41,7 +46,13 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
     a->sum = calloc(a->cells * NSUMS, sizeof *a->sum);
     a->frame_sum = calloc(a->cells * NSUMS, sizeof *a->frame_sum);
     a->scratch = calloc(nf, sizeof *a->scratch);
-    int ok = a->sum && a->frame_sum && a->scratch;
+    a->threads = 1;
+#ifdef _OPENMP
+    a->threads = o->threads > 0 ? o->threads : omp_get_max_threads();
+#endif
+    if (a->threads > 1)
+        a->thread_sum = calloc((size_t)a->threads * a->cells * NSUMS, sizeof *a->thread_sum);
+    int ok = a->sum && a->frame_sum && a->scratch && (a->threads == 1 || a->thread_sum);
     if (ok && o->spread) {
         a->f_mean = calloc(a->cells * nf, sizeof *a->f_mean);
         a->f_m2 = calloc(a->cells * nf, sizeof *a->f_m2);
@@ -62,6 +73,7 @@ void mimas_average_free(mimas_average *a)
         return;
     free(a->sum);
     free(a->frame_sum);
+    free(a->thread_sum);
     free(a->f_mean);
     free(a->f_m2);
     free(a->f_count);
@@ -273,6 +285,71 @@ static void contact_point(const mimas_frame *f, size_t k, size_t i, size_t j, do
         c[m] = p->pos[i][m] - s * d[m];
 }
 
+/* A wall contact (or a contact with an excluded particle): f on the particle
+ * at r, the segment from the contact point c to r (PHYSICS 1, 6), and the
+ * force as a wall force density at c. */
+static void deposit_wall_contact(const mimas_deposit *dp, const mimas_grid *g, double *S,
+                                 const mimas_box *box, const double r[3], const double c[3],
+                                 const double f[3])
+{
+    double b[3] = {r[0] - c[0], r[1] - c[1], r[2] - c[2]};
+    mimas_box_min_image(box, b);
+    double from[3] = {r[0] - b[0], r[1] - b[1], r[2] - b[2]};
+    deposit_branch(dp, g, S, from, b, f, from);
+    wall_ctx wc = {S, {0, 0, 0}};
+    basis B;
+    basis_at(g, from, &B);
+    to_local(&B, f, wc.f);
+    mimas_deposit_sphere(dp, from, 0.0, add_wall_force, &wc);
+}
+
+/* Thread t of nt deposits every nt-th particle, contact and wall contact of
+ * the frame into the sums S. */
+static void deposit_frame(const mimas_average *a, const mimas_frame *f, const mimas_grid *g,
+                          const mimas_deposit *dp, double *S, int t, int nt)
+{
+    const mimas_particles *p = &f->particles;
+    for (size_t k = (size_t)t; k < p->n; k += (size_t)nt) {
+        if (!a->keep[k])
+            continue;
+        particle_ctx pc = {S, p->mass[k], 4.0 / 3.0 * M_PI * pow(p->radius[k], 3),
+                           2.0 * p->radius[k], (double)a->ncontacts[k], {0, 0, 0}};
+        basis B;
+        basis_at(g, p->pos[k], &B);
+        to_local(&B, p->vel[k], pc.v);
+        mimas_deposit_sphere(dp, p->pos[k], p->radius[k], add_particle, &pc);
+    }
+    const mimas_contacts *c = &f->contacts;
+    for (size_t k = (size_t)t; f->has_contacts && k < c->n; k += (size_t)nt) {
+        size_t i = c->i[k], j = c->j[k];
+        if (!a->keep[i] && !a->keep[j])
+            continue;
+        if (a->keep[i] && a->keep[j]) {
+            /* f_ij (x) (r_i - r_j), the branch by the minimum image (PHYSICS 1) */
+            double b[3] = {p->pos[i][0] - p->pos[j][0], p->pos[i][1] - p->pos[j][1],
+                           p->pos[i][2] - p->pos[j][2]};
+            mimas_box_min_image(&f->box, b);
+            const double *at = (c->present & MIMAS_C_POINT) ? c->point[k] : p->pos[i];
+            deposit_branch(dp, g, S, p->pos[j], b, c->force[k], at);
+            continue;
+        }
+        /* one side excluded (a wall particle): a wall contact of the other */
+        size_t in = a->keep[i] ? i : j, out = a->keep[i] ? j : i;
+        double cp[3], fin[3];
+        contact_point(f, k, in, out, cp);
+        for (int m = 0; m < 3; m++)
+            fin[m] = in == i ? c->force[k][m] : -c->force[k][m];
+        deposit_wall_contact(dp, g, S, &f->box, p->pos[in], cp, fin);
+    }
+    const mimas_wall_contacts *w = &f->walls;
+    for (size_t k = (size_t)t; f->has_walls && k < w->n; k += (size_t)nt) {
+        size_t i = w->particle[k];
+        if (!a->keep[i])
+            continue;
+        deposit_wall_contact(dp, g, S, &f->box, p->pos[i], w->point[k], w->force[k]);
+    }
+}
+
 int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
 {
     int rc = prepare(a, f, err);
@@ -285,64 +362,25 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
     mimas_deposit dp;
     mimas_deposit_init(&dp, &g, &a->opt.weight, &f->box, a->opt.grid_none);
     double *S = a->frame_sum;
-    memset(S, 0, a->cells * NSUMS * sizeof *S);
-    const mimas_particles *p = &f->particles;
-    for (size_t k = 0; k < p->n; k++) {
-        if (!a->keep[k])
-            continue;
-        particle_ctx pc = {S, p->mass[k], 4.0 / 3.0 * M_PI * pow(p->radius[k], 3),
-                           2.0 * p->radius[k], (double)a->ncontacts[k], {0, 0, 0}};
-        basis B;
-        basis_at(&g, p->pos[k], &B);
-        to_local(&B, p->vel[k], pc.v);
-        mimas_deposit_sphere(&dp, p->pos[k], p->radius[k], add_particle, &pc);
-    }
-    const mimas_contacts *c = &f->contacts;
-    for (size_t k = 0; f->has_contacts && k < c->n; k++) {
-        size_t i = c->i[k], j = c->j[k];
-        if (!a->keep[i] && !a->keep[j])
-            continue;
-        if (a->keep[i] && a->keep[j]) {
-            /* f_ij (x) (r_i - r_j), the branch by the minimum image (PHYSICS 1) */
-            double b[3] = {p->pos[i][0] - p->pos[j][0], p->pos[i][1] - p->pos[j][1],
-                           p->pos[i][2] - p->pos[j][2]};
-            mimas_box_min_image(&f->box, b);
-            const double *at = (c->present & MIMAS_C_POINT) ? c->point[k] : p->pos[i];
-            deposit_branch(&dp, &g, S, p->pos[j], b, c->force[k], at);
-            continue;
+    size_t nsum = a->cells * NSUMS;
+    if (a->threads > 1) {
+        /* each thread deposits into its own sums, added up afterwards: the
+         * result depends on the thread count only through summation order */
+        memset(a->thread_sum, 0, (size_t)a->threads * nsum * sizeof *a->thread_sum);
+#ifdef _OPENMP
+#pragma omp parallel num_threads(a->threads)
+        {
+            int t = omp_get_thread_num(), nt = omp_get_num_threads();
+            deposit_frame(a, f, &g, &dp, a->thread_sum + (size_t)t * nsum, t, nt);
         }
-        /* one side excluded (a wall particle): a wall contact of the other */
-        size_t in = a->keep[i] ? i : j, out = a->keep[i] ? j : i;
-        double cp[3], fin[3];
-        contact_point(f, k, in, out, cp);
-        for (int m = 0; m < 3; m++)
-            fin[m] = in == i ? c->force[k][m] : -c->force[k][m];
-        double b[3] = {p->pos[in][0] - cp[0], p->pos[in][1] - cp[1], p->pos[in][2] - cp[2]};
-        mimas_box_min_image(&f->box, b);
-        double from[3] = {p->pos[in][0] - b[0], p->pos[in][1] - b[1], p->pos[in][2] - b[2]};
-        deposit_branch(&dp, &g, S, from, b, fin, from);
-        wall_ctx wc = {S, {0, 0, 0}};
-        basis B;
-        basis_at(&g, from, &B);
-        to_local(&B, fin, wc.f);
-        mimas_deposit_sphere(&dp, from, 0.0, add_wall_force, &wc);
-    }
-    const mimas_wall_contacts *w = &f->walls;
-    for (size_t k = 0; f->has_walls && k < w->n; k++) {
-        size_t i = w->particle[k];
-        if (!a->keep[i])
-            continue;
-        /* f_iw (x) (r_i - c), the segment from the contact point (PHYSICS 1, 6) */
-        double b[3] = {p->pos[i][0] - w->point[k][0], p->pos[i][1] - w->point[k][1],
-                       p->pos[i][2] - w->point[k][2]};
-        mimas_box_min_image(&f->box, b);
-        double from[3] = {p->pos[i][0] - b[0], p->pos[i][1] - b[1], p->pos[i][2] - b[2]};
-        deposit_branch(&dp, &g, S, from, b, w->force[k], from);
-        wall_ctx wc = {S, {0, 0, 0}};
-        basis B;
-        basis_at(&g, from, &B);
-        to_local(&B, w->force[k], wc.f);
-        mimas_deposit_sphere(&dp, from, 0.0, add_wall_force, &wc);
+#endif
+        memset(S, 0, nsum * sizeof *S);
+        for (int t = 0; t < a->threads; t++)
+            for (size_t k = 0; k < nsum; k++)
+                S[k] += a->thread_sum[(size_t)t * nsum + k];
+    } else {
+        memset(S, 0, nsum * sizeof *S);
+        deposit_frame(a, f, &g, &dp, S, 0, 1);
     }
     for (size_t k = 0; k < a->cells * NSUMS; k++)
         a->sum[k] += S[k];

@@ -25,6 +25,7 @@ typedef struct mimas_average_options {
     size_t ntypes;
     int exclude;
     int spread;               /* keep per-frame statistics (standard deviation, error) */
+    int threads;              /* OpenMP threads for the deposition (0: OpenMP's default) */
 } mimas_average_options;
 
 typedef struct mimas_average mimas_average;

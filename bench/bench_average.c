@@ -59,7 +59,8 @@ static void build(mimas_frame *f, int m, double d)
     gsl_rng_free(rng);
 }
 
-static double run(const mimas_frame *f, const char *grid, const char *weight, int frames)
+static double run(const mimas_frame *f, const char *grid, const char *weight, int frames,
+                  int threads)
 {
     mimas_average_options o;
     memset(&o, 0, sizeof o);
@@ -69,6 +70,7 @@ static double run(const mimas_frame *f, const char *grid, const char *weight, in
         fprintf(stderr, "bench_average: %s\n", err.msg);
         exit(2);
     }
+    o.threads = threads;
     mimas_average *a;
     if (mimas_average_create(&a, &o, &err)) {
         fprintf(stderr, "bench_average: %s\n", err.msg);
@@ -103,14 +105,16 @@ int main(int argc, char **argv)
         const char *name, *grid, *weight;
     } cases[] = {{"bins  x-y-z", xyz, "bins"}, {"gauss x-y-z", xyz, "gauss:w=0.001"},
                  {"bins  r-z  ", rz, "bins"}};
-    printf("mimas average: %zu particles, %zu contacts per frame, spacing = w = d = 1 mm, "
-           "1 thread\n", f.particles.n, f.contacts.n);
-    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-        double t_all = run(&f, cases[k].grid, cases[k].weight, frames);
-        double t_p = run(&bare, cases[k].grid, cases[k].weight, frames);
-        printf("  %s  %.3f s/frame: particles %.3g /s, contacts %.3g /s\n", cases[k].name, t_all,
-               (double)f.particles.n / t_p, (double)f.contacts.n / (t_all - t_p));
-    }
+    printf("mimas average: %zu particles, %zu contacts per frame, spacing = w = d = 1 mm\n",
+           f.particles.n, f.contacts.n);
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++)
+        for (int threads = 1; threads <= 2; threads++) {
+            double t_all = run(&f, cases[k].grid, cases[k].weight, frames, threads);
+            double t_p = run(&bare, cases[k].grid, cases[k].weight, frames, threads);
+            printf("  %s  %d thread%s  %.3f s/frame: particles %.3g /s, contacts %.3g /s\n",
+                   cases[k].name, threads, threads > 1 ? "s" : " ", t_all,
+                   (double)f.particles.n / t_p, (double)f.contacts.n / (t_all - t_p));
+        }
     mimas_frame_free(&f);
     mimas_frame_free(&bare);
     return 0;

@@ -26,19 +26,20 @@ static const cli_option options[] = {
                               "contacts become wall contacts of the others)"},
     {"errors", 0, NULL, "add NAME_sem columns: the standard error over frames"},
     {"tsv", 0, "FILE", "write the table to FILE (default: standard output)"},
+    {"threads", 0, "N", "OpenMP threads (default: OMP_NUM_THREADS or all cores)"},
     {"list-fields", 0, NULL, "print the fields with their units and definitions (Markdown) and "
                              "exit"},
 };
 
 enum { O_GRID, O_WEIGHT, O_FIELDS, O_AXIS, O_FROM, O_TO, O_EVERY, O_TYPES, O_EXCLUDE,
-       O_ERRORS, O_TSV, O_LIST };
+       O_ERRORS, O_TSV, O_THREADS, O_LIST };
 
 typedef struct average_args {
     const cli_command *cmd;
     const char *grid, *weight, *fields, *axis, *tsv;
     double from, to;
     int has_from, has_to, errors;
-    long every;
+    long every, threads;
     int32_t types[64];
     size_t ntypes;
     int exclude, types_given, list;
@@ -91,6 +92,10 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_ERRORS: a->errors = 1; return 0;
     case O_TSV: a->tsv = arg; return 0;
     case O_LIST: a->list = 1; return 0;
+    case O_THREADS:
+        if (cli_parse_long(arg, &a->threads) || a->threads < 1 || a->threads > 1024)
+            return cli_fail(a->cmd, 1, "--threads needs a number from 1 to 1024, not '%s'", arg);
+        return 0;
     }
     return 1;
 }
@@ -231,6 +236,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     o.ntypes = a.ntypes;
     o.exclude = a.exclude;
     o.spread = a.errors;
+    o.threads = (int)a.threads;
     int cyl = o.grid.kind == MIMAS_GRID_CYLINDRICAL && !o.grid_none;
     unsigned char want[128];
     if (!rc)

@@ -483,6 +483,37 @@ static void test_simple_shear(void **state)
     free(pos);
 }
 
+/* Two threads give the single-thread result up to summation order. */
+static void test_threads_agree(void **state)
+{
+    (void)state;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    last_frame(data("periodic_box/dump.periodic.atom.gz"),
+               data("periodic_box/dump.periodic.pgl.gz"), &f);
+    mimas_average *av[2];
+    for (int t = 0; t < 2; t++) {
+        mimas_average_options o;
+        memset(&o, 0, sizeof o);
+        mimas_error err;
+        assert_int_equal(mimas_grid_parse(&o.grid, "x=0:0.02:4,z=0:0.02:5", NULL, &err), 0);
+        assert_int_equal(mimas_weight_parse(&o.weight, "bins", &err), 0);
+        o.threads = t + 1;
+        assert_int_equal(mimas_average_create(&av[t], &o, &err), 0);
+        assert_int_equal(mimas_average_add(av[t], &f, &err), 0);
+    }
+    double s1[NSUMS], s2[NSUMS];
+    for (size_t c = 0; c < 20; c++) {
+        mimas_average_sums(av[0], c, s1);
+        mimas_average_sums(av[1], c, s2);
+        for (int k = 0; k < NSUMS; k++)
+            assert_close(s2[k], s1[k], 1e-12 * fmax(1.0, fabs(s1[k])));
+    }
+    mimas_average_free(av[0]);
+    mimas_average_free(av[1]);
+    mimas_frame_free(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -494,6 +525,7 @@ int main(void)
         cmocka_unit_test(test_rigid_rotation),
         cmocka_unit_test(test_couette_shear_rate),
         cmocka_unit_test(test_simple_shear),
+        cmocka_unit_test(test_threads_agree),
     };
     return cmocka_run_group_tests_name("average", tests, NULL, NULL);
 }

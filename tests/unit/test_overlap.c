@@ -148,7 +148,7 @@ static void test_box_partition(void **state)
         worst = fmax(worst, fabs(sum / ball(R) - 1.0));
         assert_close(sum, ball(R), 1e-12 * ball(R));
     }
-    print_message("box partition: worst relative error %.2g\n", worst);
+    print_message("# box partition: worst relative error %.2g\n", worst);
     gsl_rng_free(rng);
 }
 
@@ -350,7 +350,7 @@ static void test_box_brute_force(void **state)
         brute b = {{q[0], q[1], q[2]}, q[3], q[8], q[9], q[4], q[5], q[6], q[7], 0, 0, 0, 0};
         double lo[3] = {q[4], q[6], q[8]}, hi[3] = {q[5], q[7], q[9]};
         double v = overlap_sphere_box(q, q[3], lo, hi), w = brute_volume(&b);
-        print_message("box case %zu: %.15g brute force %.15g (rel %.1g)\n", k, v, w,
+        print_message("# box case %zu: %.15g brute force %.15g (rel %.1g)\n", k, v, w,
                       fabs(v - w) / w);
         assert_close(v, w, 1e-11 * w);
     }
@@ -450,7 +450,7 @@ static void test_cyl_against_box(void **state)
         got = overlap_sphere_cylcell(c, R, 0.0, INF, 0.0, PI, z0, z1);
         assert_close(got, overlap_sphere_box(c, R, hl, all_hi), 1e-12 * ball(R));
     }
-    print_message("cylinder wedge vs box: worst error %.2g of the ball volume\n", worst);
+    print_message("# cylinder wedge vs box: worst error %.2g of the ball volume\n", worst);
     gsl_rng_free(rng);
 }
 
@@ -517,7 +517,7 @@ static void test_cyl_partition(void **state)
         double c[3] = {d * cos(trial), d * sin(trial), 0.3};
         cyl_partition(rng, c, R, &worst);
     }
-    print_message("cylinder partition: worst relative error %.2g\n", worst);
+    print_message("# cylinder partition: worst relative error %.2g\n", worst);
     gsl_rng_free(rng);
 }
 
@@ -540,7 +540,7 @@ static void test_cyl_brute_force(void **state)
         brute b = {{q[0], q[1], q[2]}, q[3], q[8], q[9], q[4], q[5], q[6], q[7], 1, 0, 0, 0};
         double v = overlap_sphere_cylcell(q, q[3], q[4], q[5], q[6], q[7], q[8], q[9]);
         double w = brute_volume(&b);
-        print_message("cylinder case %zu: %.15g brute force %.15g (rel %.1g)\n", k, v, w,
+        print_message("# cylinder case %zu: %.15g brute force %.15g (rel %.1g)\n", k, v, w,
                       fabs(v - w) / w);
         assert_close(v, w, 1e-11 * w);
     }
@@ -622,7 +622,7 @@ static void test_segment_box_partition(void **state)
         worst = fmax(worst, fabs(sum - 1.0));
         assert_close(sum, 1.0, 1e-14);
     }
-    print_message("segment box partition: worst error %.2g\n", worst);
+    print_message("# segment box partition: worst error %.2g\n", worst);
     gsl_rng_free(rng);
 }
 
@@ -725,7 +725,7 @@ static void test_segment_cyl_partition(void **state)
         worst = fmax(worst, fabs(sum - 1.0));
         assert_close(sum, 1.0, 1e-14);
     }
-    print_message("segment cylinder partition: worst error %.2g\n", worst);
+    print_message("# segment cylinder partition: worst error %.2g\n", worst);
     gsl_rng_free(rng);
 }
 
