@@ -93,6 +93,11 @@ const mimas_grid *mimas_average_grid(const mimas_average *a)
     return &a->grid;
 }
 
+int mimas_average_grid_none(const mimas_average *a)
+{
+    return a->opt.grid_none;
+}
+
 /* ---- the local basis: Cartesian, or (e_r, e_phi, e_z) at a point ---- */
 
 typedef struct basis {

@@ -258,3 +258,19 @@ int cli_parse_long(const char *s, long *v)
     *v = x;
     return 0;
 }
+
+char *cli_command_line(int argc, char **argv)
+{
+    size_t len = 16;
+    for (int k = 0; k < argc; k++)
+        len += strlen(argv[k]) + 1;
+    char *s = malloc(len);
+    if (!s)
+        return NULL;
+    strcpy(s, "mimas");
+    for (int k = 0; k < argc; k++) {
+        strcat(s, " ");
+        strcat(s, argv[k]);
+    }
+    return s;
+}

@@ -56,6 +56,8 @@ void cli_print_man(const cli_command *cmd, const char *version, FILE *out);
 /* "mimas NAME: message" on stderr; returns status. */
 int cli_fail(const cli_command *cmd, int status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
+/* "mimas ARGS..." (malloc'd), for provenance attributes. */
+char *cli_command_line(int argc, char **argv);
 /* Parses a number; returns 0 on success. */
 int cli_parse_double(const char *s, double *v);
 int cli_parse_long(const char *s, long *v);

@@ -10,6 +10,7 @@
 
 #include "average.h"
 #include "commands.h"
+#include "output_h5.h"
 #include "fields.h"
 #include "reader.h"
 
@@ -25,18 +26,21 @@ static const cli_option options[] = {
     {"exclude-types", 0, "L", "drop particles of these types (e.g. glued wall particles; their "
                               "contacts become wall contacts of the others)"},
     {"errors", 0, NULL, "add NAME_sem columns: the standard error over frames"},
-    {"tsv", 0, "FILE", "write the table to FILE (default: standard output)"},
+    {"output", 'o', "FIELDS.h5", "write the fields to HDF5 (mean, standard deviation, frame "
+                                 "count; with an XDMF sidecar FIELDS.xdmf for ParaView)"},
+    {"tsv", 0, "FILE", "write the table to FILE, or - for standard output (the default "
+                       "without -o)"},
     {"threads", 0, "N", "OpenMP threads (default: OMP_NUM_THREADS or all cores)"},
     {"list-fields", 0, NULL, "print the fields with their units and definitions (Markdown) and "
                              "exit"},
 };
 
 enum { O_GRID, O_WEIGHT, O_FIELDS, O_AXIS, O_FROM, O_TO, O_EVERY, O_TYPES, O_EXCLUDE,
-       O_ERRORS, O_TSV, O_THREADS, O_LIST };
+       O_ERRORS, O_OUTPUT, O_TSV, O_THREADS, O_LIST };
 
 typedef struct average_args {
     const cli_command *cmd;
-    const char *grid, *weight, *fields, *axis, *tsv;
+    const char *grid, *weight, *fields, *axis, *tsv, *output;
     double from, to;
     int has_from, has_to, errors;
     long every, threads;
@@ -91,6 +95,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_EXCLUDE: a->exclude = 1; return parse_types(a, arg, "exclude-types");
     case O_ERRORS: a->errors = 1; return 0;
     case O_TSV: a->tsv = arg; return 0;
+    case O_OUTPUT: a->output = arg; return 0;
     case O_LIST: a->list = 1; return 0;
     case O_THREADS:
         if (cli_parse_long(arg, &a->threads) || a->threads < 1 || a->threads > 1024)
@@ -235,7 +240,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     o.types = a.types;
     o.ntypes = a.ntypes;
     o.exclude = a.exclude;
-    o.spread = a.errors;
+    o.spread = a.errors || a.output; /* the HDF5 file always has the spread */
     o.threads = (int)a.threads;
     int cyl = o.grid.kind == MIMAS_GRID_CYLINDRICAL && !o.grid_none;
     unsigned char want[128];
@@ -282,6 +287,19 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (status != MIMAS_END) {
         mimas_average_free(avg);
         return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
+    }
+    if (a.output) {
+        char *line = cli_command_line(argc, argv);
+        status = mimas_fields_write_h5(avg, a.output, line, &err);
+        free(line);
+        if (status) {
+            mimas_average_free(avg);
+            return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
+        }
+        if (!a.tsv) {
+            mimas_average_free(avg);
+            return 0;
+        }
     }
     /* the table: to a temporary name and renamed, or to standard output */
     char tmp[4096];

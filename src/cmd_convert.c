@@ -31,23 +31,6 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     return 0;
 }
 
-/* The command line, for the file's provenance attribute. */
-static char *command_line(int argc, char **argv)
-{
-    size_t len = 16;
-    for (int k = 0; k < argc; k++)
-        len += strlen(argv[k]) + 1;
-    char *s = malloc(len);
-    if (!s)
-        return NULL;
-    strcpy(s, "mimas");
-    for (int k = 0; k < argc; k++) {
-        strcat(s, " ");
-        strcat(s, argv[k]);
-    }
-    return s;
-}
-
 static int run(const cli_command *cmd, int argc, char **argv)
 {
     convert_args a = {NULL, 1, cmd};
@@ -67,7 +50,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     mimas_writer_options_default(&o);
     o.deflate = (int)a.deflate;
     o.atomic = 1; /* no partial output: the file appears when it is complete */
-    char *provenance = command_line(argc, argv);
+    char *provenance = cli_command_line(argc, argv);
     o.provenance = provenance;
     mimas_writer *w = NULL;
     mimas_error err;

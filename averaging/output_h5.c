@@ -1,0 +1,231 @@
+#include <config.h>
+
+#include "output_h5.h"
+
+#include <hdf5.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "fields.h"
+#include "h5util.h"
+
+/* Dimensions of a field dataset: (n2, n1, n0), direction 0 fastest like the
+ * cell index. */
+static void dims_of(const mimas_grid *g, int none, hsize_t dims[3])
+{
+    for (int d = 0; d < 3; d++)
+        dims[2 - d] = none ? 1 : (hsize_t)g->n[d];
+}
+
+static int write_array(hid_t loc, const char *name, int rank, const hsize_t *dims,
+                       const double *data, const char *unit, const char *meaning)
+{
+    hid_t s = H5Screate_simple(rank, dims, NULL);
+    hid_t ds = H5Dcreate2(loc, name, H5T_IEEE_F64LE, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    int rc = ds < 0 || H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0;
+    if (!rc && unit && strcmp(unit, "1") != 0)
+        rc |= h5_attr_write_str(ds, "unit", unit);
+    if (!rc && meaning)
+        rc |= h5_attr_write_str(ds, "definition", meaning);
+    if (ds >= 0)
+        H5Dclose(ds);
+    H5Sclose(s);
+    return rc;
+}
+
+/* Cell-centre positions in Cartesian coordinates (for XDMF), n x 3. */
+static void centres(const mimas_grid *g, int none, size_t cells, double *xyz)
+{
+    for (size_t c = 0; c < cells; c++) {
+        double q[3] = {0, 0, 0}, p[3];
+        if (!none)
+            mimas_grid_cell_centre(g, c, q);
+        if (g->kind == MIMAS_GRID_CYLINDRICAL && !none) {
+            /* back from the axis frame: origin + r cos(phi) ex + r sin(phi) ey + z ez */
+            double a0 = q[0] * cos(q[1]), a1 = q[0] * sin(q[1]);
+            for (int d = 0; d < 3; d++)
+                p[d] = g->origin[d] + a0 * g->ex[d] + a1 * g->ey[d] + q[2] * g->ez[d];
+        } else {
+            memcpy(p, q, sizeof p);
+        }
+        memcpy(&xyz[3 * c], p, sizeof p);
+    }
+}
+
+static int write_xdmf(const char *path, const char *h5name, const mimas_grid *g, int none,
+                      int cyl, const hsize_t dims[3])
+{
+    FILE *fp = fopen(path, "w");
+    if (!fp)
+        return -1;
+    fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
+                "  <Grid Name=\"mimas fields\" GridType=\"Uniform\">\n"
+                "   <Topology TopologyType=\"3DSMesh\" Dimensions=\"%llu %llu %llu\"/>\n"
+                "   <Geometry GeometryType=\"XYZ\">\n"
+                "    <DataItem Dimensions=\"%llu %llu %llu 3\" NumberType=\"Float\" "
+                "Precision=\"8\" Format=\"HDF\">%s:/grid/points</DataItem>\n   </Geometry>\n",
+            (unsigned long long)dims[0], (unsigned long long)dims[1],
+            (unsigned long long)dims[2], (unsigned long long)dims[0],
+            (unsigned long long)dims[1], (unsigned long long)dims[2], h5name);
+    for (size_t k = 0; k < mimas_fields_count(); k++) {
+        const char *name = mimas_field_name(k, cyl);
+        if (!name)
+            continue;
+        fprintf(fp, "   <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+                    "    <DataItem Dimensions=\"%llu %llu %llu\" NumberType=\"Float\" "
+                    "Precision=\"8\" Format=\"HDF\">%s:/fields/%s/mean</DataItem>\n"
+                    "   </Attribute>\n",
+                name, (unsigned long long)dims[0], (unsigned long long)dims[1],
+                (unsigned long long)dims[2], h5name, name);
+    }
+    fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
+    (void)g;
+    (void)none;
+    return fclose(fp);
+}
+
+static int write_grid(hid_t file, const mimas_grid *g, int none, size_t cells)
+{
+    hid_t gg = H5Gcreate2(file, "/grid", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (gg < 0)
+        return -1;
+    int rc = h5_attr_write_str(gg, "kind", none ? "none"
+                                           : g->kind == MIMAS_GRID_CYLINDRICAL ? "cylindrical"
+                                                                               : "cartesian");
+    int n[3] = {g->n[0], g->n[1], g->n[2]};
+    rc |= h5_attr_write_ints(gg, "cells", n, 3);
+    for (int d = 0; d < 3 && !none; d++) {
+        /* cell-centre coordinates along each direction */
+        hsize_t len = (hsize_t)g->n[d];
+        double *c = malloc(len * sizeof *c);
+        if (!c)
+            return H5Gclose(gg), -1;
+        for (hsize_t k = 0; k < len; k++)
+            c[k] = g->lo[d] + (g->hi[d] - g->lo[d]) * ((double)k + 0.5) / g->n[d];
+        rc |= write_array(gg, mimas_grid_coord_name(g, d), 1, &len, c,
+                          g->kind == MIMAS_GRID_CYLINDRICAL && d == 1 ? "rad" : "m",
+                          g->gridded[d] ? "cell centres" : "cell centre (not gridded)");
+        free(c);
+    }
+    if (g->kind == MIMAS_GRID_CYLINDRICAL && !none) {
+        hsize_t six = 3;
+        rc |= write_array(gg, "axis_origin", 1, &six, g->origin, "m", "a point of the axis");
+        rc |= write_array(gg, "axis_direction", 1, &six, g->ez, NULL, "unit vector e_z");
+        rc |= write_array(gg, "axis_phi0", 1, &six, g->ex, NULL, "unit vector e_x (phi = 0)");
+    }
+    double *xyz = malloc(cells * 3 * sizeof *xyz);
+    if (!xyz)
+        return H5Gclose(gg), -1;
+    centres(g, none, cells, xyz);
+    hsize_t pd[4];
+    dims_of(g, none, pd);
+    pd[3] = 3;
+    rc |= write_array(gg, "points", 4, pd, xyz, "m", "cell centres, Cartesian (for XDMF)");
+    free(xyz);
+    H5Gclose(gg);
+    return rc;
+}
+
+int mimas_fields_write_h5(const mimas_average *a, const char *path, const char *provenance,
+                          mimas_error *err)
+{
+    const mimas_grid *g = mimas_average_grid(a);
+    int none = mimas_average_grid_none(a);
+    int cyl = g->kind == MIMAS_GRID_CYLINDRICAL && !none;
+    size_t cells = none ? 1 : mimas_grid_cells(g), nf = mimas_fields_count();
+    double *mean = malloc(cells * nf * sizeof *mean), *sd = malloc(cells * nf * sizeof *sd),
+           *count = malloc(cells * nf * sizeof *count), *col = malloc(cells * sizeof *col);
+    if (!mean || !sd || !count || !col || mimas_average_fields(a, mean, sd, count)) {
+        free(mean), free(sd), free(count), free(col);
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    }
+    char tmp[4096], xdmf[4096], xtmp[4200];
+    snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid());
+    size_t len = strlen(path);
+    if (len > 3 && !strcmp(path + len - 3, ".h5"))
+        snprintf(xdmf, sizeof xdmf, "%.*s.xdmf", (int)(len - 3), path);
+    else
+        snprintf(xdmf, sizeof xdmf, "%s.xdmf", path);
+    snprintf(xtmp, sizeof xtmp, "%s.tmp%ld", xdmf, (long)getpid());
+    h5_quiet q;
+    h5_quiet_begin(&q);
+    hid_t file = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    int rc = file < 0;
+    if (!rc) {
+        hid_t gm = H5Gcreate2(file, "/mimas", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        int v[2] = {MIMAS_FIELDS_VERSION_MAJOR, MIMAS_FIELDS_VERSION_MINOR};
+        long frames = (long)mimas_average_frames(a);
+        int fr = (int)frames;
+        rc |= gm < 0 || h5_attr_write_ints(gm, "fields_version", v, 2) ||
+              h5_attr_write_str(gm, "creator", PACKAGE_NAME " " PACKAGE_VERSION) ||
+              h5_attr_write_ints(gm, "frames", &fr, 1) ||
+              (provenance && h5_attr_write_str(gm, "provenance", provenance));
+        if (gm >= 0)
+            H5Gclose(gm);
+        rc |= write_grid(file, g, none, cells);
+        hid_t gf = H5Gcreate2(file, "/fields", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        hsize_t dims[3];
+        dims_of(g, none, dims);
+        for (size_t k = 0; !rc && k < nf; k++) {
+            const char *name = mimas_field_name(k, cyl);
+            if (!name)
+                continue;
+            const mimas_field_desc *fd = mimas_field(k);
+            hid_t one = H5Gcreate2(gf, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+            rc |= one < 0 || h5_attr_write_str(one, "unit", fd->unit) ||
+                  h5_attr_write_str(one, "definition", fd->meaning);
+            const double *src[3] = {mean, sd, count};
+            const char *what[3] = {"mean", "std", "count"};
+            const char *desc[3] = {"the field from the time-averaged sums",
+                                   "standard deviation of the per-frame field over frames",
+                                   "frames in which the field was defined"};
+            for (int m = 0; m < 3 && !rc; m++) {
+                for (size_t c = 0; c < cells; c++)
+                    col[c] = src[m][c * nf + k];
+                rc |= write_array(one, what[m], 3, dims, col, m == 2 ? NULL : fd->unit, desc[m]);
+            }
+            if (one >= 0)
+                H5Gclose(one);
+        }
+        if (gf >= 0)
+            H5Gclose(gf);
+        /* the full (non-symmetric) contact stress from the time-averaged sums */
+        double *full = rc ? NULL : malloc(cells * 9 * sizeof *full);
+        if (!rc && full) {
+            double S[NSUMS];
+            for (size_t c = 0; c < cells; c++) {
+                mimas_average_sums(a, c, S);
+                memcpy(&full[9 * c], &S[S_C], 9 * sizeof *full);
+            }
+            hsize_t td[5] = {dims[0], dims[1], dims[2], 3, 3};
+            hid_t gt = H5Gcreate2(file, "/tensors", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+            rc |= gt < 0 ||
+                  write_array(gt, "cstress", 5, td, full, "Pa",
+                              cyl ? "contact stress sum_c f_ij (x) (r_i - r_j) psi_ij, full tensor "
+                                    "[a][b] = f_a b_b in (r, phi, z) components"
+                                  : "contact stress sum_c f_ij (x) (r_i - r_j) psi_ij, full tensor "
+                                    "[a][b] = f_a b_b in (x, y, z) components");
+            if (gt >= 0)
+                H5Gclose(gt);
+        }
+        rc |= !full;
+        free(full);
+        rc |= H5Fclose(file) < 0;
+        const char *base = strrchr(path, '/');
+        if (!rc)
+            rc |= write_xdmf(xtmp, base ? base + 1 : path, g, none, cyl, dims) != 0;
+    }
+    h5_quiet_end(&q);
+    free(mean), free(sd), free(count), free(col);
+    if (!rc && (rename(tmp, path) != 0 || rename(xtmp, xdmf) != 0))
+        rc = 1;
+    if (rc) {
+        remove(tmp);
+        remove(xtmp);
+        return mimas_error_set(err, MIMAS_EIO, "%s: cannot write the field file", path);
+    }
+    return MIMAS_OK;
+}
