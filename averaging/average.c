@@ -496,7 +496,8 @@ int mimas_average_fields(const mimas_average *a, double *fields, double *sd, dou
         if (cyl)
             mimas_grid_cell_centre(&a->grid, cell, ctr);
         if (velocity_gradient(a, fields, nf, cell, &sums[cell * NSUMS], L))
-            mimas_fields_strain(L, &sums[cell * NSUMS], cyl, ctr[0], &fields[cell * nf]);
+            mimas_fields_strain(L, &sums[cell * NSUMS], cyl, ctr[0], a->opt.diameter,
+                                &fields[cell * nf]);
     }
     free(sums);
     return 0;

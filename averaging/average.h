@@ -26,6 +26,7 @@ typedef struct mimas_average_options {
     int exclude;
     int spread;               /* keep per-frame statistics (standard deviation, error) */
     int threads;              /* OpenMP threads for the deposition (0: OpenMP's default) */
+    double diameter;          /* d of the inertial number (0: the cell's mean diameter) */
 } mimas_average_options;
 
 typedef struct mimas_average mimas_average;

@@ -45,8 +45,8 @@ static const mimas_field_desc fields[NFIELDS] = {
     {"", "shear_rate_luding", "s-1",
      "0.5 sqrt((dv_phi/dr - v_phi/r)^2 + (dv_phi/dz)^2) (000 eq. 2.13)"},
     {"eta", NULL, "Pa s", "viscosity tau/shear_rate (undefined where shear_rate = 0)"},
-    {"I", NULL, "1", "inertial number shear_rate d sqrt(rho_p/p), rho_p = rho/nu "
-                     "(undefined where p <= 0)"},
+    {"I", NULL, "1", "inertial number shear_rate d sqrt(rho_p/p), rho_p = rho/nu, d the "
+                     "cell's d or --diameter (undefined where p <= 0)"},
 };
 
 size_t mimas_fields_count(void)
@@ -127,7 +127,7 @@ size_t mimas_fields_velocity(void)
 }
 
 void mimas_fields_strain(const double L[3][3], const double *S, int cylindrical, double r,
-                         double *out)
+                         double diameter, double *out)
 {
     double D[3][3];
     for (int a = 0; a < 3; a++)
@@ -152,5 +152,6 @@ void mimas_fields_strain(const double L[3][3], const double *S, int cylindrical,
     out[F_SHEAR] = g;
     out[F_ETA] = g > 0 ? out[F_TAU] / g : NAN;
     double rho_p = S[S_V] > 0 ? S[S_M] / S[S_V] : NAN;
-    out[F_I] = out[F_P] > 0 ? g * out[F_D] * sqrt(rho_p / out[F_P]) : NAN;
+    double d = diameter > 0 ? diameter : out[F_D];
+    out[F_I] = out[F_P] > 0 ? g * d * sqrt(rho_p / out[F_P]) : NAN;
 }

@@ -48,9 +48,10 @@ void mimas_fields_derive(const double *S, int cylindrical, double r, double *out
 /* Fills shear_rate, shear_rate_luding, eta and I of one cell from the
  * velocity gradient L[a][b] = d V_a / d x_b in the cell's (x y z) or
  * physical cylindrical (r phi z) components, where for cylindrical grids
- * L[.][1] is (1/r) d/dphi and the curvature terms are added here. */
+ * L[.][1] is (1/r) d/dphi and the curvature terms are added here.  I uses
+ * diameter if it is > 0, else the cell's mean diameter d. */
 void mimas_fields_strain(const double L[3][3], const double *S, int cylindrical, double r,
-                         double *out);
+                         double diameter, double *out);
 /* Index of the velocity columns (3 consecutive). */
 size_t mimas_fields_velocity(void);
 

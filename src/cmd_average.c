@@ -31,17 +31,19 @@ static const cli_option options[] = {
     {"tsv", 0, "FILE", "write the table to FILE, or - for standard output (the default "
                        "without -o)"},
     {"threads", 0, "N", "OpenMP threads (default: OMP_NUM_THREADS or all cores)"},
+    {"diameter", 0, "D", "particle diameter for the inertial number (default: each cell's "
+                         "mean diameter)"},
     {"list-fields", 0, NULL, "print the fields with their units and definitions (Markdown) and "
                              "exit"},
 };
 
 enum { O_GRID, O_WEIGHT, O_FIELDS, O_AXIS, O_FROM, O_TO, O_EVERY, O_TYPES, O_EXCLUDE,
-       O_ERRORS, O_OUTPUT, O_TSV, O_THREADS, O_LIST };
+       O_ERRORS, O_OUTPUT, O_TSV, O_THREADS, O_DIAMETER, O_LIST };
 
 typedef struct average_args {
     const cli_command *cmd;
     const char *grid, *weight, *fields, *axis, *tsv, *output;
-    double from, to;
+    double from, to, diameter;
     int has_from, has_to, errors;
     long every, threads;
     int32_t types[64];
@@ -96,6 +98,10 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_ERRORS: a->errors = 1; return 0;
     case O_TSV: a->tsv = arg; return 0;
     case O_OUTPUT: a->output = arg; return 0;
+    case O_DIAMETER:
+        if (cli_parse_double(arg, &a->diameter) || !(a->diameter > 0))
+            return cli_fail(a->cmd, 1, "--diameter needs a positive length, not '%s'", arg);
+        return 0;
     case O_LIST: a->list = 1; return 0;
     case O_THREADS:
         if (cli_parse_long(arg, &a->threads) || a->threads < 1 || a->threads > 1024)
@@ -242,6 +248,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     o.exclude = a.exclude;
     o.spread = a.errors || a.output; /* the HDF5 file always has the spread */
     o.threads = (int)a.threads;
+    o.diameter = a.diameter;
     int cyl = o.grid.kind == MIMAS_GRID_CYLINDRICAL && !o.grid_none;
     unsigned char want[128];
     if (!rc)
