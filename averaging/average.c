@@ -67,6 +67,18 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
     return MIMAS_OK;
 }
 
+void mimas_average_reset(mimas_average *a)
+{
+    size_t nf = mimas_fields_count();
+    memset(a->sum, 0, a->cells * NSUMS * sizeof *a->sum);
+    if (a->opt.spread) {
+        memset(a->f_mean, 0, a->cells * nf * sizeof *a->f_mean);
+        memset(a->f_m2, 0, a->cells * nf * sizeof *a->f_m2);
+        memset(a->f_count, 0, a->cells * nf * sizeof *a->f_count);
+    }
+    a->frames = 0;
+}
+
 void mimas_average_free(mimas_average *a)
 {
     if (!a)

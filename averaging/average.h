@@ -46,6 +46,8 @@ int mimas_average_grid_none(const mimas_average *a);
 int mimas_average_fields(const mimas_average *a, double *fields, double *sd, double *count);
 /* The time-averaged primary sums of a cell (NSUMS values, fields.h). */
 void mimas_average_sums(const mimas_average *a, size_t cell, double *sums);
+/* Forgets all frames (the grid is fitted again to the next frame). */
+void mimas_average_reset(mimas_average *a);
 void mimas_average_free(mimas_average *a);
 
 #ifdef __cplusplus

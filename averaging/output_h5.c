@@ -129,8 +129,162 @@ static int write_grid(hid_t file, const mimas_grid *g, int none, size_t cells)
     return rc;
 }
 
-int mimas_fields_write_h5(const mimas_average *a, const char *path, const char *provenance,
-                          mimas_error *err)
+struct mimas_fields_file {
+    char path[4096], tmp[4200], xdmf[4096], xtmp[4300];
+    hid_t file;
+    hid_t step, time;          /* /frames/step and /frames/time */
+    hid_t *per;                /* /frames/<field>, one per field (or 0) */
+    hsize_t frames;
+    h5_quiet quiet;
+};
+
+int mimas_fields_open(mimas_fields_file **out, const char *path, mimas_error *err)
+{
+    *out = NULL;
+    mimas_fields_file *ff = calloc(1, sizeof *ff);
+    if (!ff)
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    snprintf(ff->path, sizeof ff->path, "%s", path);
+    snprintf(ff->tmp, sizeof ff->tmp, "%s.tmp%ld", path, (long)getpid());
+    size_t len = strlen(path);
+    if (len > 3 && !strcmp(path + len - 3, ".h5"))
+        snprintf(ff->xdmf, sizeof ff->xdmf, "%.*s.xdmf", (int)(len - 3), path);
+    else
+        snprintf(ff->xdmf, sizeof ff->xdmf, "%s.xdmf", path);
+    snprintf(ff->xtmp, sizeof ff->xtmp, "%s.tmp%ld", ff->xdmf, (long)getpid());
+    h5_quiet_begin(&ff->quiet);
+    ff->file = H5Fcreate(ff->tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    h5_quiet_end(&ff->quiet);
+    if (ff->file < 0) {
+        free(ff);
+        return mimas_error_set(err, MIMAS_EIO, "%s: cannot create the field file", path);
+    }
+    *out = ff;
+    return MIMAS_OK;
+}
+
+static void close_frames(mimas_fields_file *ff)
+{
+    if (ff->step > 0)
+        H5Dclose(ff->step);
+    if (ff->time > 0)
+        H5Dclose(ff->time);
+    for (size_t k = 0; ff->per && k < mimas_fields_count(); k++)
+        if (ff->per[k] > 0)
+            H5Dclose(ff->per[k]);
+    free(ff->per);
+    ff->per = NULL;
+}
+
+void mimas_fields_abort(mimas_fields_file *ff)
+{
+    if (!ff)
+        return;
+    h5_quiet_begin(&ff->quiet);
+    close_frames(ff);
+    H5Fclose(ff->file);
+    h5_quiet_end(&ff->quiet);
+    remove(ff->tmp);
+    remove(ff->xtmp);
+    free(ff);
+}
+
+/* Appends one row (at index k) of a growing dataset of rank 1 + rank(dims). */
+static int append_row(hid_t ds, hsize_t k, int rank, const hsize_t *dims, const double *row)
+{
+    hsize_t ext[5] = {k + 1}, start[5] = {k}, count[5] = {1};
+    for (int d = 0; d < rank; d++) {
+        ext[d + 1] = dims[d];
+        start[d + 1] = 0;
+        count[d + 1] = dims[d];
+    }
+    if (H5Dset_extent(ds, ext) < 0)
+        return -1;
+    hid_t fs = H5Dget_space(ds);
+    hsize_t n = 1;
+    for (int d = 0; d < rank; d++)
+        n *= dims[d];
+    hid_t ms = H5Screate_simple(1, &n, NULL);
+    int rc = H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL) < 0 ||
+             H5Dwrite(ds, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, row) < 0;
+    H5Sclose(ms);
+    H5Sclose(fs);
+    return rc;
+}
+
+int mimas_fields_append_frame(mimas_fields_file *ff, const mimas_average *frame, int64_t step,
+                              double time, mimas_error *err)
+{
+    const mimas_grid *g = mimas_average_grid(frame);
+    int none = mimas_average_grid_none(frame);
+    int cyl = g->kind == MIMAS_GRID_CYLINDRICAL && !none;
+    size_t cells = none ? 1 : mimas_grid_cells(g), nf = mimas_fields_count();
+    hsize_t dims[3];
+    dims_of(g, none, dims);
+    double *all = malloc(cells * nf * sizeof *all), *col = malloc(cells * sizeof *col);
+    int rc = !all || !col || mimas_average_fields(frame, all, NULL, NULL);
+    h5_quiet_begin(&ff->quiet);
+    if (!rc && !ff->per) {
+        ff->per = calloc(nf, sizeof *ff->per);
+        hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+        H5Pset_create_intermediate_group(lcpl, 1);
+        hid_t gf = H5Gcreate2(ff->file, "/frames", lcpl, H5P_DEFAULT, H5P_DEFAULT);
+        H5Pclose(lcpl);
+        hsize_t zero = 0, chunk1 = 256;
+        ff->step = h5_create_growing(gf, "step", H5T_STD_I64LE, 1, 1, &zero, &chunk1, NULL, 0);
+        ff->time = h5_create_growing(gf, "time", H5T_IEEE_F64LE, 1, 1, &zero, &chunk1, NULL, 0);
+        hsize_t d4[4] = {0, dims[0], dims[1], dims[2]}, c4[4] = {1, dims[0], dims[1], dims[2]};
+        for (size_t k = 0; ff->per && k < nf; k++) {
+            const char *name = mimas_field_name(k, cyl);
+            if (!name)
+                continue;
+            ff->per[k] = h5_create_growing(gf, name, H5T_IEEE_F64LE, 4, 1, d4, c4, NULL, 1);
+            if (ff->per[k] < 0 || h5_attr_write_str(ff->per[k], "unit", mimas_field(k)->unit) ||
+                h5_attr_write_str(ff->per[k], "definition", mimas_field(k)->meaning))
+                rc = 1;
+        }
+        if (gf >= 0)
+            H5Gclose(gf);
+        rc |= !ff->per || ff->step < 0 || ff->time < 0;
+    }
+    if (!rc) {
+        hsize_t one = 1;
+        hsize_t k = ff->frames;
+        hsize_t ext = k + 1;
+        hid_t fs;
+        /* step (int64) and time */
+        int64_t s64 = step;
+        if (H5Dset_extent(ff->step, &ext) < 0)
+            rc = 1;
+        else {
+            fs = H5Dget_space(ff->step);
+            hid_t ms = H5Screate_simple(1, &one, NULL);
+            H5Sselect_hyperslab(fs, H5S_SELECT_SET, &k, NULL, &one, NULL);
+            rc |= H5Dwrite(ff->step, H5T_NATIVE_INT64, ms, fs, H5P_DEFAULT, &s64) < 0;
+            H5Sclose(ms);
+            H5Sclose(fs);
+        }
+        rc |= append_row(ff->time, k, 0, dims, &time);
+        for (size_t q = 0; !rc && q < nf; q++) {
+            if (ff->per[q] <= 0)
+                continue;
+            for (size_t c = 0; c < cells; c++)
+                col[c] = all[c * nf + q];
+            rc |= append_row(ff->per[q], k, 3, dims, col);
+        }
+        if (!rc)
+            ff->frames++;
+    }
+    h5_quiet_end(&ff->quiet);
+    free(all);
+    free(col);
+    return rc ? mimas_error_set(err, MIMAS_EIO, "%s: cannot write the fields of step %lld",
+                                ff->path, (long long)step)
+              : MIMAS_OK;
+}
+
+int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const char *provenance,
+                        mimas_error *err)
 {
     const mimas_grid *g = mimas_average_grid(a);
     int none = mimas_average_grid_none(a);
@@ -140,21 +294,15 @@ int mimas_fields_write_h5(const mimas_average *a, const char *path, const char *
            *count = malloc(cells * nf * sizeof *count), *col = malloc(cells * sizeof *col);
     if (!mean || !sd || !count || !col || mimas_average_fields(a, mean, sd, count)) {
         free(mean), free(sd), free(count), free(col);
+        mimas_fields_abort(ff);
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
     }
-    char tmp[4096], xdmf[4096], xtmp[4200];
-    snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid());
-    size_t len = strlen(path);
-    if (len > 3 && !strcmp(path + len - 3, ".h5"))
-        snprintf(xdmf, sizeof xdmf, "%.*s.xdmf", (int)(len - 3), path);
-    else
-        snprintf(xdmf, sizeof xdmf, "%s.xdmf", path);
-    snprintf(xtmp, sizeof xtmp, "%s.tmp%ld", xdmf, (long)getpid());
     h5_quiet q;
     h5_quiet_begin(&q);
-    hid_t file = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    int rc = file < 0;
-    if (!rc) {
+    hid_t file = ff->file;
+    int rc = 0;
+    close_frames(ff);
+    {
         hid_t gm = H5Gcreate2(file, "/mimas", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
         int v[2] = {MIMAS_FIELDS_VERSION_MAJOR, MIMAS_FIELDS_VERSION_MINOR};
         long frames = (long)mimas_average_frames(a);
@@ -214,18 +362,21 @@ int mimas_fields_write_h5(const mimas_average *a, const char *path, const char *
         rc |= !full;
         free(full);
         rc |= H5Fclose(file) < 0;
-        const char *base = strrchr(path, '/');
+        const char *base = strrchr(ff->path, '/');
         if (!rc)
-            rc |= write_xdmf(xtmp, base ? base + 1 : path, g, none, cyl, dims) != 0;
+            rc |= write_xdmf(ff->xtmp, base ? base + 1 : ff->path, g, none, cyl, dims) != 0;
     }
     h5_quiet_end(&q);
     free(mean), free(sd), free(count), free(col);
-    if (!rc && (rename(tmp, path) != 0 || rename(xtmp, xdmf) != 0))
+    if (!rc && (rename(ff->tmp, ff->path) != 0 || rename(ff->xtmp, ff->xdmf) != 0))
         rc = 1;
     if (rc) {
-        remove(tmp);
-        remove(xtmp);
-        return mimas_error_set(err, MIMAS_EIO, "%s: cannot write the field file", path);
+        remove(ff->tmp);
+        remove(ff->xtmp);
+        int code = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the field file", ff->path);
+        free(ff);
+        return code;
     }
+    free(ff);
     return MIMAS_OK;
 }

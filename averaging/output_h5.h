@@ -4,15 +4,27 @@
 #ifndef MIMAS_OUTPUT_H5_H
 #define MIMAS_OUTPUT_H5_H
 
+#include <stdint.h>
+
 #include "average.h"
 #include "error.h"
 
 #define MIMAS_FIELDS_VERSION_MAJOR 1
 #define MIMAS_FIELDS_VERSION_MINOR 0
 
-/* Writes PATH (and PATH with .xdmf instead of .h5) under temporary names,
- * renamed when complete.  provenance: the command line (may be NULL). */
-int mimas_fields_write_h5(const mimas_average *a, const char *path, const char *provenance,
-                          mimas_error *err);
+typedef struct mimas_fields_file mimas_fields_file;
+
+/* Starts PATH (and PATH with .xdmf instead of .h5) under temporary names. */
+int mimas_fields_open(mimas_fields_file **ff, const char *path, mimas_error *err);
+/* Appends the fields of one frame (an average holding just that frame) to
+ * /frames (--per-frame). */
+int mimas_fields_append_frame(mimas_fields_file *ff, const mimas_average *frame, int64_t step,
+                              double time, mimas_error *err);
+/* Writes the time average, the grid and the provenance (the command line,
+ * may be NULL), closes and renames the files into place; frees ff. */
+int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const char *provenance,
+                        mimas_error *err);
+/* Closes and removes the unfinished files; frees ff. */
+void mimas_fields_abort(mimas_fields_file *ff);
 
 #endif

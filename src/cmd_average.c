@@ -26,6 +26,8 @@ static const cli_option options[] = {
     {"exclude-types", 0, "L", "drop particles of these types (e.g. glued wall particles; their "
                               "contacts become wall contacts of the others)"},
     {"errors", 0, NULL, "add NAME_sem columns: the standard error over frames"},
+    {"per-frame", 0, NULL, "also write each frame's fields (TSV: step and time columns; HDF5: "
+                           "/frames)"},
     {"output", 'o', "FIELDS.h5", "write the fields to HDF5 (mean, standard deviation, frame "
                                  "count; with an XDMF sidecar FIELDS.xdmf for ParaView)"},
     {"tsv", 0, "FILE", "write the table to FILE, or - for standard output (the default "
@@ -38,7 +40,7 @@ static const cli_option options[] = {
 };
 
 enum { O_GRID, O_WEIGHT, O_FIELDS, O_AXIS, O_FROM, O_TO, O_EVERY, O_TYPES, O_EXCLUDE,
-       O_ERRORS, O_OUTPUT, O_TSV, O_THREADS, O_DIAMETER, O_LIST };
+       O_ERRORS, O_PER_FRAME, O_OUTPUT, O_TSV, O_THREADS, O_DIAMETER, O_LIST };
 
 typedef struct average_args {
     const cli_command *cmd;
@@ -48,7 +50,7 @@ typedef struct average_args {
     long every, threads;
     int32_t types[64];
     size_t ntypes;
-    int exclude, types_given, list;
+    int exclude, types_given, list, per_frame;
 } average_args;
 
 static int parse_types(average_args *a, const char *arg, const char *opt)
@@ -96,6 +98,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_TYPES: return parse_types(a, arg, "types");
     case O_EXCLUDE: a->exclude = 1; return parse_types(a, arg, "exclude-types");
     case O_ERRORS: a->errors = 1; return 0;
+    case O_PER_FRAME: a->per_frame = 1; return 0;
     case O_TSV: a->tsv = arg; return 0;
     case O_OUTPUT: a->output = arg; return 0;
     case O_DIAMETER:
@@ -152,29 +155,20 @@ static void print_value(FILE *out, const char *sep, double v)
         fprintf(out, "%s%.17g", sep, v);
 }
 
-static int write_table(FILE *out, const mimas_average *avg, int grid_none, int cyl,
-                       const unsigned char *want, int errors)
+static void write_header(FILE *out, const mimas_grid *g, int grid_none, int cyl,
+                         const unsigned char *want, int errors, int per_frame)
 {
-    const mimas_grid *g = mimas_average_grid(avg);
-    size_t nf = mimas_fields_count();
-    size_t cells = grid_none ? 1 : mimas_grid_cells(g);
-    double *mean = malloc(cells * nf * sizeof *mean), *sd = malloc(cells * nf * sizeof *sd),
-           *count = malloc(cells * nf * sizeof *count);
-    int rc = mean && sd && count ? mimas_average_fields(avg, mean, sd, count) : -1;
-    if (rc) {
-        free(mean);
-        free(sd);
-        free(count);
-        return -1;
-    }
-    /* header: the gridded coordinates, then the fields */
     const char *sep = "";
+    if (per_frame) {
+        fprintf(out, "step\ttime");
+        sep = "\t";
+    }
     for (int d = 0; d < 3 && !grid_none; d++)
         if (g->gridded[d]) {
             fprintf(out, "%s%s", sep, mimas_grid_coord_name(g, d));
             sep = "\t";
         }
-    for (size_t k = 0; k < nf; k++) {
+    for (size_t k = 0; k < mimas_fields_count(); k++) {
         if (!want[k])
             continue;
         fprintf(out, "%s%s", sep, mimas_field_name(k, cyl));
@@ -183,11 +177,28 @@ static int write_table(FILE *out, const mimas_average *avg, int grid_none, int c
             fprintf(out, "\t%s_sem", mimas_field_name(k, cyl));
     }
     fputc('\n', out);
-    for (size_t cell = 0; cell < cells; cell++) {
+}
+
+/* One row per cell; with frame (not NULL) the rows start with its step and time. */
+static int write_rows(FILE *out, const mimas_average *avg, int grid_none,
+                      const unsigned char *want, int errors, const mimas_frame *frame)
+{
+    const mimas_grid *g = mimas_average_grid(avg);
+    size_t nf = mimas_fields_count();
+    size_t cells = grid_none ? 1 : mimas_grid_cells(g);
+    double *mean = malloc(cells * nf * sizeof *mean), *sd = malloc(cells * nf * sizeof *sd),
+           *count = malloc(cells * nf * sizeof *count);
+    int rc = mean && sd && count ? mimas_average_fields(avg, mean, sd, count) : -1;
+    for (size_t cell = 0; !rc && cell < cells; cell++) {
         double ctr[3];
         if (!grid_none)
             mimas_grid_cell_centre(g, cell, ctr);
-        sep = "";
+        const char *sep = "";
+        if (frame) {
+            fprintf(out, "%lld", (long long)frame->step);
+            print_value(out, "\t", frame->time);
+            sep = "\t";
+        }
         for (int d = 0; d < 3 && !grid_none; d++)
             if (g->gridded[d]) {
                 print_value(out, sep, ctr[d]);
@@ -207,7 +218,7 @@ static int write_table(FILE *out, const mimas_average *avg, int grid_none, int c
     free(mean);
     free(sd);
     free(count);
-    return ferror(out) ? -1 : 0;
+    return rc || ferror(out) ? -1 : 0;
 }
 
 /* The field table as docs/fields.md shows it. */
@@ -264,11 +275,35 @@ static int run(const cli_command *cmd, int argc, char **argv)
         cli_inputs_free(&in);
         return rc < 0 ? 0 : rc;
     }
+    /* outputs: the table (a temporary name renamed at the end, or standard
+     * output) unless only -o was asked for; the HDF5 file */
+    FILE *out = NULL;
+    char tmp[4096] = "";
+    int status = MIMAS_OK;
+    int want_table = a.tsv || !a.output;
+    if (want_table && a.tsv && strcmp(a.tsv, "-") != 0) {
+        snprintf(tmp, sizeof tmp, "%s.tmp%ld", a.tsv, (long)getpid());
+        out = fopen(tmp, "w");
+        if (!out)
+            status = mimas_error_set(&err, MIMAS_EIO, "%s: cannot write: %s", a.tsv,
+                                     strerror(errno));
+    } else if (want_table) {
+        out = stdout;
+    }
+    mimas_fields_file *ff = NULL;
+    if (!status && a.output)
+        status = mimas_fields_open(&ff, a.output, &err);
+    mimas_average *one = NULL; /* the current frame alone (--per-frame) */
+    if (!status && a.per_frame) {
+        mimas_average_options o1 = o;
+        o1.spread = 0;
+        status = mimas_average_create(&one, &o1, &err);
+    }
     mimas_frame f;
     mimas_frame_init(&f);
     long seen = 0;
-    int status = MIMAS_OK;
-    while ((status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
+    int header_done = 0;
+    while (!status && (status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
         if ((a.has_from || a.has_to) && isnan(f.time)) {
             status = mimas_error_set(&err, MIMAS_EUSAGE, "%s: frame at step %lld has no time; "
                                      "give --timestep for --from/--to", argv[first],
@@ -280,55 +315,57 @@ static int run(const cli_command *cmd, int argc, char **argv)
         if (seen++ % a.every)
             continue;
         status = mimas_average_add(avg, &f, &err);
-        if (status) {
-            mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
-            break;
+        if (!status && one) {
+            mimas_average_reset(one);
+            status = mimas_average_add(one, &f, &err);
+            if (!status && out) {
+                if (!header_done++)
+                    write_header(out, mimas_average_grid(one), o.grid_none, cyl, want, 0, 1);
+                if (write_rows(out, one, o.grid_none, want, 0, &f))
+                    status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
+            }
+            if (!status && ff)
+                status = mimas_fields_append_frame(ff, one, f.step, f.time, &err);
         }
+        if (status && status != MIMAS_EIO)
+            mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
     }
     mimas_frame_free(&f);
     mimas_reader_close(r);
     cli_inputs_free(&in);
+    mimas_average_free(one);
     if (status == MIMAS_END && mimas_average_frames(avg) == 0)
         status = mimas_error_set(&err, MIMAS_EDATA, "%s: no frame in the selected time range",
                                  argv[first]);
-    if (status != MIMAS_END) {
-        mimas_average_free(avg);
-        return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
+    if (status == MIMAS_END && out && !a.per_frame) {
+        write_header(out, mimas_average_grid(avg), o.grid_none, cyl, want, a.errors, 0);
+        if (write_rows(out, avg, o.grid_none, want, a.errors, NULL))
+            status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
     }
-    if (a.output) {
+    if (status == MIMAS_END && ff) {
         char *line = cli_command_line(argc, argv);
-        status = mimas_fields_write_h5(avg, a.output, line, &err);
+        status = mimas_fields_finish(ff, avg, line, &err);
+        ff = NULL;
         free(line);
-        if (status) {
-            mimas_average_free(avg);
-            return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
-        }
-        if (!a.tsv) {
-            mimas_average_free(avg);
-            return 0;
-        }
+        if (!status)
+            status = MIMAS_END;
     }
-    /* the table: to a temporary name and renamed, or to standard output */
-    char tmp[4096];
-    FILE *out = stdout;
-    if (a.tsv && strcmp(a.tsv, "-") != 0) {
-        snprintf(tmp, sizeof tmp, "%s.tmp%ld", a.tsv, (long)getpid());
-        out = fopen(tmp, "w");
-        if (!out) {
-            mimas_average_free(avg);
-            return cli_fail(cmd, 2, "%s: cannot write: %s", a.tsv, strerror(errno));
-        }
-    }
-    rc = write_table(out, avg, o.grid_none, cyl, want, a.errors);
     mimas_average_free(avg);
-    if (out != stdout) {
-        rc |= fclose(out);
-        if (rc || rename(tmp, a.tsv) != 0) {
+    if (out && out != stdout) {
+        if (fclose(out) != 0 && status == MIMAS_END)
+            status = mimas_error_set(&err, MIMAS_EIO, "%s: cannot write the table", a.tsv);
+        if (status == MIMAS_END && rename(tmp, a.tsv) != 0)
+            status = mimas_error_set(&err, MIMAS_EIO, "%s: cannot write the table", a.tsv);
+        if (status != MIMAS_END)
             remove(tmp);
-            return cli_fail(cmd, 2, "%s: cannot write the table", a.tsv);
-        }
-    } else if (rc || fflush(stdout)) {
-        return cli_fail(cmd, 2, "cannot write the table");
+    } else if (out && fflush(stdout) != 0 && status == MIMAS_END) {
+        status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
+    }
+    mimas_fields_abort(ff);
+    if (status != MIMAS_END) {
+        if (status == MIMAS_EIO && a.output && !strstr(err.msg, a.output))
+            mimas_error_prefix(&err, "%s", a.output);
+        return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
     }
     return 0;
 }
