@@ -32,10 +32,11 @@ struct mimas_average {
 int mimas_average_create(mimas_average **out, const mimas_average_options *o, mimas_error *err)
 {
     *out = NULL;
-    if (o->weight.kind == MIMAS_WEIGHT_GAUSS && o->grid.kind == MIMAS_GRID_CYLINDRICAL &&
+    if (o->weight.kind >= MIMAS_WEIGHT_GAUSS && o->grid.kind == MIMAS_GRID_CYLINDRICAL &&
         !o->grid_none)
-        return mimas_error_set(err, MIMAS_EUSAGE, "gauss weights on cylindrical grids are not "
-                               "implemented yet: use bins or bins:center");
+        return mimas_error_set(err, MIMAS_EUSAGE, "kernel weights (gauss, lucy, shepard) on "
+                               "cylindrical grids are not implemented yet: use bins or "
+                               "bins:center");
     mimas_average *a = calloc(1, sizeof *a);
     if (!a)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
@@ -173,6 +174,7 @@ static void add_particle(void *user, size_t cell, double w, const double *grad)
         S[S_NN] += w;
     }
     for (int a = 0; a < 3; a++) {
+        S[S_U + a] += p->v[a] * w;
         S[S_P + a] += p->m * p->v[a] * w;
         for (int b = 0; b < 3; b++)
             S[S_K + 3 * a + b] += p->m * p->v[a] * p->v[b] * w;
@@ -409,7 +411,8 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
             double ctr[3] = {0, 0, 0};
             if (cyl)
                 mimas_grid_cell_centre(&g, cell, ctr);
-            mimas_fields_derive(&S[cell * NSUMS], cyl, ctr[0], a->scratch);
+            mimas_fields_derive(&S[cell * NSUMS], cyl, ctr[0],
+                                a->opt.weight.kind == MIMAS_WEIGHT_SHEPARD, a->scratch);
             for (size_t q = 0; q < nf; q++) {
                 double x = a->scratch[q];
                 if (isnan(x))
@@ -444,7 +447,9 @@ static int velocity_gradient(const mimas_average *a, const double *fields, size_
     const double *V = &fields[cell * nf + iv];
     if (isnan(V[0]))
         return 0;
-    if (a->opt.weight.kind == MIMAS_WEIGHT_GAUSS && g->kind == MIMAS_GRID_CARTESIAN) {
+    /* the kernels' analytic gradient (Shepard's ratio: differences, below) */
+    if ((a->opt.weight.kind == MIMAS_WEIGHT_GAUSS || a->opt.weight.kind == MIMAS_WEIGHT_LUCY) &&
+        g->kind == MIMAS_GRID_CARTESIAN) {
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++)
                 L[i][j] = (S[S_GP + 3 * i + j] - V[i] * S[S_GM + j]) / S[S_M];
@@ -493,7 +498,8 @@ int mimas_average_fields(const mimas_average *a, double *fields, double *sd, dou
         double ctr[3] = {0, 0, 0};
         if (cyl)
             mimas_grid_cell_centre(&a->grid, cell, ctr);
-        mimas_fields_derive(S, cyl, ctr[0], &fields[cell * nf]);
+        mimas_fields_derive(S, cyl, ctr[0], a->opt.weight.kind == MIMAS_WEIGHT_SHEPARD,
+                            &fields[cell * nf]);
         for (size_t q = 0; q < nf; q++) {
             size_t at = cell * nf + q;
             double n = a->opt.spread ? a->f_count[at] : 0;

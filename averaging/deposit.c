@@ -79,14 +79,14 @@ static double cell_weight_sphere(const mimas_deposit *dp, const int idx[3], cons
     double lo[3], hi[3], c[3];
     cell_geometry(dp, idx, lo, hi, c);
     *has_grad = 0;
-    if (dp->wt->kind == MIMAS_WEIGHT_GAUSS) {
+    if (dp->wt->kind >= MIMAS_WEIGHT_GAUSS) {
         if (g->kind == MIMAS_GRID_CARTESIAN) {
             double d[3] = {c[0] - x[0], c[1] - x[1], c[2] - x[2]};
             *has_grad = 1;
-            return mimas_gauss_phi_grad(dp->wt, d, grad);
+            return mimas_kernel_phi_grad(dp->wt, d, grad);
         }
         double d[3] = {c[0] * cos(c[1]) - a[0], c[0] * sin(c[1]) - a[1], c[2] - a[2]};
-        return mimas_gauss_phi(dp->wt, d);
+        return mimas_kernel_phi_grad(dp->wt, d, grad);
     }
     double vol_p = 4.0 / 3.0 * M_PI * R * R * R;
     double ov = g->kind == MIMAS_GRID_CARTESIAN
@@ -200,7 +200,7 @@ void mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, 
     }
     int point = dp->wt->kind == MIMAS_WEIGHT_BINS_CENTER ||
                 (dp->wt->kind == MIMAS_WEIGHT_BINS && !(R > 0));
-    double reach = dp->wt->kind == MIMAS_WEIGHT_GAUSS ? mimas_weight_reach(dp->wt) : R;
+    double reach = dp->wt->kind >= MIMAS_WEIGHT_GAUSS ? mimas_weight_reach(dp->wt) : R;
     double blo[3] = {x[0] - reach, x[1] - reach, x[2] - reach};
     double bhi[3] = {x[0] + reach, x[1] + reach, x[2] + reach};
     for (int s = 0; s < dp->nshift; s++) {
@@ -238,7 +238,7 @@ static void visit_segment(const mimas_deposit *dp, size_t cell, const int idx[3]
     const mimas_grid *g = dp->grid;
     double lo[3], hi[3], c[3], w;
     cell_geometry(dp, idx, lo, hi, c);
-    if (dp->wt->kind == MIMAS_WEIGHT_GAUSS) {
+    if (dp->wt->kind >= MIMAS_WEIGHT_GAUSS) {
         double p[3];
         if (g->kind == MIMAS_GRID_CARTESIAN)
             memcpy(p, c, sizeof p);
@@ -251,7 +251,7 @@ static void visit_segment(const mimas_deposit *dp, size_t cell, const int idx[3]
         const double *b = g->kind == MIMAS_GRID_CARTESIAN ? s->b : s->ab;
         double d[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
         double br[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-        w = mimas_gauss_line(dp->wt, d, br);
+        w = mimas_kernel_line(dp->wt, d, br);
     } else {
         double f = g->kind == MIMAS_GRID_CARTESIAN
                        ? segment_fraction_box(s->a, s->b, lo, hi)

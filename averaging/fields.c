@@ -81,7 +81,7 @@ static double ratio(double a, double b)
     return b != 0.0 ? a / b : NAN;
 }
 
-void mimas_fields_derive(const double *S, int cylindrical, double r, double *out)
+void mimas_fields_derive(const double *S, int cylindrical, double r, int shepard, double *out)
 {
     double rho = S[S_M];
     out[F_N] = S[S_N];
@@ -119,6 +119,17 @@ void mimas_fields_derive(const double *S, int cylindrical, double r, double *out
     for (int k = 0; k < 3; k++)
         out[F_WALL + k] = S[S_W + k];
     out[F_SHEAR] = out[F_SHEAR_L] = out[F_ETA] = out[F_I] = NAN;
+    if (shepard) {
+        for (int k = 0; k < 3; k++)
+            out[F_V + k] = ratio(S[S_U + k], S[S_N]);
+        out[F_OMEGA] = cylindrical ? ratio(out[F_V + 1], r) : NAN;
+        for (int k = 0; k < NFIELDS; k++) {
+            int keep = (k >= F_V && k <= F_OMEGA) || k == F_Z || k == F_ZNR || k == F_D ||
+                       k == F_SHEAR || k == F_SHEAR_L;
+            if (!keep)
+                out[k] = NAN;
+        }
+    }
 }
 
 size_t mimas_fields_velocity(void)
@@ -151,7 +162,7 @@ void mimas_fields_strain(const double L[3][3], const double *S, int cylindrical,
     double g = sqrt(2.0 * dd);
     out[F_SHEAR] = g;
     out[F_ETA] = g > 0 ? out[F_TAU] / g : NAN;
-    double rho_p = S[S_V] > 0 ? S[S_M] / S[S_V] : NAN;
+    double rho_p = S[S_V] > 0 ? S[S_M] / S[S_V] : NAN; /* NaN for Shepard: no I */
     double d = diameter > 0 ? diameter : out[F_D];
     out[F_I] = out[F_P] > 0 ? g * d * sqrt(rho_p / out[F_P]) : NAN;
 }

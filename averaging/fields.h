@@ -24,7 +24,8 @@ enum {
     S_W,            /* 3: sum f_wall delta(r - c): wall force density */
     S_GM = S_W + 3, /* 3: sum m grad phi (Gaussian weights only) */
     S_GP = S_GM + 3,/* 9: sum m v_a d_b phi (Gaussian weights only) */
-    NSUMS = S_GP + 9
+    S_U = S_GP + 9, /* 3: sum v phi, for Shepard's ratio of sums */
+    NSUMS = S_U + 3
 };
 
 typedef struct mimas_field_desc {
@@ -43,8 +44,10 @@ const char *mimas_field_name(size_t k, int cylindrical);
  * centre's radius (cylindrical grids).  Undefined values (velocity of an
  * empty cell, mu where p <= 0, ...) are NaN, as docs/fields.md says.  The
  * strain-rate columns are left NaN: they need the neighbouring cells
- * (mimas_fields_strain). */
-void mimas_fields_derive(const double *S, int cylindrical, double r, double *out);
+ * (mimas_fields_strain).  shepard: Shepard's ratio of sums (002 eq. 2.27)
+ * defines only means of per-particle values (velocity as sum v phi / sum
+ * phi, Z, d, the strain rates); the densities and stresses are NaN. */
+void mimas_fields_derive(const double *S, int cylindrical, double r, int shepard, double *out);
 /* Fills shear_rate, shear_rate_luding, eta and I of one cell from the
  * velocity gradient L[a][b] = d V_a / d x_b in the cell's (x y z) or
  * physical cylindrical (r phi z) components, where for cylindrical grids

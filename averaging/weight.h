@@ -13,12 +13,14 @@ extern "C" {
 typedef enum mimas_weight_kind {
     MIMAS_WEIGHT_BINS,        /* exact volume / segment overlap with the cell */
     MIMAS_WEIGHT_BINS_CENTER, /* the cell holding the centre (contact point) */
-    MIMAS_WEIGHT_GAUSS        /* normalised Gaussian of width w, cut at cutoff*w */
+    MIMAS_WEIGHT_GAUSS,       /* normalised Gaussian of width w, cut at cutoff*w */
+    MIMAS_WEIGHT_LUCY,        /* Lucy's polynomial of range c */
+    MIMAS_WEIGHT_SHEPARD      /* ratio of Gaussian sums of per-particle values (002 eq. 2.27) */
 } mimas_weight_kind;
 
 typedef struct mimas_weight {
     mimas_weight_kind kind;
-    double w;        /* Gaussian standard deviation */
+    double w;        /* Gaussian standard deviation; Lucy: the range c */
     double cutoff;   /* in units of w (default 3) */
     double shift;    /* exp(-cutoff^2/2): the kernel is shifted to 0 at the cutoff */
     double norm;     /* 1 / integral of the cut, shifted Gaussian (renormalisation) */
@@ -27,7 +29,7 @@ typedef struct mimas_weight {
     double reach2;   /* (cutoff w)^2 */
 } mimas_weight;
 
-/* "bins", "bins:center", "gauss:w=W[,cutoff=C]". */
+/* "bins", "bins:center", "gauss:w=W[,cutoff=C]", "lucy:c=C", "shepard:w=W[,cutoff=C]". */
 int mimas_weight_parse(mimas_weight *wt, const char *spec, mimas_error *err);
 
 /* The Gaussian coarse-graining function at distance vector d: the Gaussian
@@ -40,7 +42,11 @@ double mimas_gauss_phi_grad(const mimas_weight *wt, const double d[3], double g[
  * in closed form with erf, restricted to the part of the segment within the
  * cutoff. */
 double mimas_gauss_line(const mimas_weight *wt, const double d[3], const double b[3]);
-/* The support radius cutoff * w. */
+/* The kernel (Gaussian or Lucy) at d, its value and gradient, and its line
+ * integral: the functions above for the kind of wt. */
+double mimas_kernel_phi_grad(const mimas_weight *wt, const double d[3], double g[3]);
+double mimas_kernel_line(const mimas_weight *wt, const double d[3], const double b[3]);
+/* The support radius (Gaussian: cutoff * w; Lucy: c). */
 double mimas_weight_reach(const mimas_weight *wt);
 
 #ifdef __cplusplus

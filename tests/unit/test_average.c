@@ -483,6 +483,69 @@ static void test_simple_shear(void **state)
     free(pos);
 }
 
+/* Lucy's kernel integrates rho to the total mass; Shepard's velocity is the
+ * ratio sum v g / sum g (computed here with the shifted Gaussian, whose
+ * normalisation cancels). */
+static void random_velocity(const double x[3], double v[3])
+{
+    v[0] = sin(300 * x[0]) + x[1];
+    v[1] = cos(200 * x[2]);
+    v[2] = x[0] * x[1] * 1000;
+}
+
+static void test_lucy_and_shepard(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    const size_t n = 300;
+    double (*pos)[3] = malloc(sizeof *pos * n);
+    for (size_t k = 0; k < n; k++)
+        for (int d = 0; d < 3; d++)
+            pos[k][d] = 0.01 * gsl_rng_uniform(rng);
+    mimas_box box = {{0, 0, 0}, {0.01, 0.01, 0.01}, 0, 0, 0, {0, 0, 0}};
+    mimas_frame f;
+    mimas_frame_init(&f);
+    make_frame(&f, n, (const double (*)[3])pos, 0.0005, random_velocity, &box);
+    double total = 0;
+    for (size_t k = 0; k < n; k++)
+        total += f.particles.mass[k];
+    mimas_average *av = average_frame(&f, "x=-0.003:0.013:48,y=-0.003:0.013:48,"
+                                          "z=-0.003:0.013:48", "lucy:c=0.003");
+    const mimas_grid *g = mimas_average_grid(av);
+    double mass = 0, S[NSUMS];
+    for (size_t c = 0; c < mimas_grid_cells(g); c++) {
+        mimas_average_sums(av, c, S);
+        mass += S[S_M] * mimas_grid_cell_volume(g, c);
+    }
+    assert_close(mass, total, 1e-6 * total);
+    mimas_average_free(av);
+
+    const double w = 0.002, C = 3.0, x0[3] = {0.004, 0.0055, 0.006};
+    av = average_frame(&f, "x=0.0039:0.0041:1,y=0.0054:0.0056:1,z=0.0059:0.0061:1",
+                       "shepard:w=0.002");
+    double out[128];
+    assert_int_equal(mimas_average_fields(av, out, NULL, NULL), 0);
+    double num[3] = {0}, den = 0;
+    for (size_t k = 0; k < n; k++) {
+        double r2 = 0;
+        for (int d = 0; d < 3; d++)
+            r2 += (x0[d] - pos[k][d]) * (x0[d] - pos[k][d]);
+        if (r2 >= C * C * w * w)
+            continue;
+        double gk = exp(-r2 / (2 * w * w)) - exp(-C * C / 2);
+        for (int d = 0; d < 3; d++)
+            num[d] += f.particles.vel[k][d] * gk;
+        den += gk;
+    }
+    for (int d = 0; d < 3; d++)
+        assert_close(out[col("v_x", 0) + (size_t)d], num[d] / den, 1e-12);
+    assert_true(isnan(out[col("rho", 0)])); /* densities are not Shepard means */
+    mimas_average_free(av);
+    mimas_frame_free(&f);
+    free(pos);
+    gsl_rng_free(rng);
+}
+
 /* Two threads give the single-thread result up to summation order. */
 static void test_threads_agree(void **state)
 {
@@ -526,6 +589,7 @@ int main(void)
         cmocka_unit_test(test_couette_shear_rate),
         cmocka_unit_test(test_simple_shear),
         cmocka_unit_test(test_threads_agree),
+        cmocka_unit_test(test_lucy_and_shepard),
     };
     return cmocka_run_group_tests_name("average", tests, NULL, NULL);
 }
