@@ -32,11 +32,6 @@ struct mimas_average {
 int mimas_average_create(mimas_average **out, const mimas_average_options *o, mimas_error *err)
 {
     *out = NULL;
-    if (o->weight.kind >= MIMAS_WEIGHT_GAUSS && o->grid.kind == MIMAS_GRID_CYLINDRICAL &&
-        !o->grid_none)
-        return mimas_error_set(err, MIMAS_EUSAGE, "kernel weights (gauss, lucy, shepard) on "
-                               "cylindrical grids are not implemented yet: use bins or "
-                               "bins:center");
     mimas_average *a = calloc(1, sizeof *a);
     if (!a)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
@@ -448,8 +443,7 @@ static int velocity_gradient(const mimas_average *a, const double *fields, size_
     if (isnan(V[0]))
         return 0;
     /* the kernels' analytic gradient (Shepard's ratio: differences, below) */
-    if ((a->opt.weight.kind == MIMAS_WEIGHT_GAUSS || a->opt.weight.kind == MIMAS_WEIGHT_LUCY) &&
-        g->kind == MIMAS_GRID_CARTESIAN) {
+    if (a->opt.weight.kind == MIMAS_WEIGHT_GAUSS || a->opt.weight.kind == MIMAS_WEIGHT_LUCY) {
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++)
                 L[i][j] = (S[S_GP + 3 * i + j] - V[i] * S[S_GM + j]) / S[S_M];

@@ -51,6 +51,55 @@ static int index_range(const mimas_grid *g, const double *h, int d, double lo, d
     return *i0 <= *i1;
 }
 
+/* Gauss-Legendre nodes and weights on [-1, 1] (16 points, symmetric). */
+static const double gl_x[8] = {0.0950125098376374, 0.2816035507792589, 0.4580167776572274,
+                               0.6178762444026438, 0.7554044083550030, 0.8656312023878318,
+                               0.9445750230732326, 0.9894009349916499};
+static const double gl_w[8] = {0.1894506104550685, 0.1826034150449236, 0.1691565193950025,
+                               0.1495959888165767, 0.1246289712555339, 0.0951585116824928,
+                               0.0622535239386479, 0.0271524594117541};
+
+/* The kernel averaged over the azimuth (PHYSICS 6, cylindrical grids without
+ * phi cells): at the ring of radius r, height z about the axis, for a
+ * particle at axis-frame position x, (1/pi) int_0^tm phi(D(t)) dt with
+ * D^2 = r^2 + rho^2 - 2 r rho cos t + (z - x_z)^2 and tm where D reaches the
+ * kernel's support (the kernels vanish there, so the limit adds nothing to
+ * the gradient); 2 x 16-point Gauss-Legendre over [0, tm].  grad gets
+ * (d/dr, 0, d/dz). */
+static double ring_kernel(const mimas_weight *wt, double r, double z, const double x[3],
+                          double grad[3])
+{
+    double rho = hypot(x[0], x[1]), dz = z - x[2], R = mimas_weight_reach(wt);
+    double base = r * r + rho * rho + dz * dz;
+    grad[0] = grad[1] = grad[2] = 0.0;
+    double tm;
+    if (r * rho <= 0.0)
+        tm = base < R * R ? M_PI : 0.0;
+    else {
+        double k = (base - R * R) / (2.0 * r * rho);
+        tm = k <= -1.0 ? M_PI : (k >= 1.0 ? 0.0 : acos(k));
+    }
+    if (!(tm > 0.0))
+        return 0.0;
+    double sum = 0.0;
+    for (int half = 0; half < 2; half++) {
+        double lo = half ? 0.5 * tm : 0.0, h = 0.25 * tm; /* [lo, lo + tm/2] */
+        for (int k = 0; k < 8; k++)
+            for (int sgn = -1; sgn <= 1; sgn += 2) {
+                double t = lo + h * (1.0 + sgn * gl_x[k]);
+                /* field point (r, 0, z), particle (rho cos t, rho sin t, x_z) */
+                double d[3] = {r - rho * cos(t), -rho * sin(t), dz}, g[3];
+                double f = mimas_kernel_phi_grad(wt, d, g);
+                sum += h * gl_w[k] * f;
+                grad[0] += h * gl_w[k] * g[0];
+                grad[2] += h * gl_w[k] * g[2];
+            }
+    }
+    grad[0] /= M_PI;
+    grad[2] /= M_PI;
+    return sum / M_PI;
+}
+
 /* Bounds and centre of the cell with indices idx (no divisions). */
 static void cell_geometry(const mimas_deposit *dp, const int idx[3], double lo[3], double hi[3],
                           double c[3])
@@ -85,8 +134,18 @@ static double cell_weight_sphere(const mimas_deposit *dp, const int idx[3], cons
             *has_grad = 1;
             return mimas_kernel_phi_grad(dp->wt, d, grad);
         }
-        double d[3] = {c[0] * cos(c[1]) - a[0], c[0] * sin(c[1]) - a[1], c[2] - a[2]};
-        return mimas_kernel_phi_grad(dp->wt, d, grad);
+        *has_grad = 1;
+        if (!g->gridded[1])
+            return ring_kernel(dp->wt, c[0], c[2], a, grad);
+        /* phi cells: the kernel at the cell centre, its gradient in the
+         * centre's (r, phi, z) components */
+        double cs = cos(c[1]), sn = sin(c[1]), gc[3];
+        double d[3] = {c[0] * cs - a[0], c[0] * sn - a[1], c[2] - a[2]};
+        double f = mimas_kernel_phi_grad(dp->wt, d, gc);
+        grad[0] = cs * gc[0] + sn * gc[1];
+        grad[1] = -sn * gc[0] + cs * gc[1];
+        grad[2] = gc[2];
+        return f;
     }
     double vol_p = 4.0 / 3.0 * M_PI * R * R * R;
     double ov = g->kind == MIMAS_GRID_CARTESIAN
@@ -249,9 +308,21 @@ static void visit_segment(const mimas_deposit *dp, size_t cell, const int idx[3]
         }
         const double *a = g->kind == MIMAS_GRID_CARTESIAN ? s->a : s->aa;
         const double *b = g->kind == MIMAS_GRID_CARTESIAN ? s->b : s->ab;
-        double d[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
-        double br[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-        w = mimas_kernel_line(dp->wt, d, br);
+        if (g->kind == MIMAS_GRID_CYLINDRICAL && !g->gridded[1]) {
+            /* the azimuthal average along the segment: 16-point Gauss-Legendre */
+            w = 0.0;
+            for (int k = 0; k < 8; k++)
+                for (int sgn = -1; sgn <= 1; sgn += 2) {
+                    double t = 0.5 * (1.0 + sgn * gl_x[k]), x[3], gr[3];
+                    for (int m = 0; m < 3; m++)
+                        x[m] = a[m] + t * (b[m] - a[m]);
+                    w += 0.5 * gl_w[k] * ring_kernel(dp->wt, c[0], c[2], x, gr);
+                }
+        } else {
+            double d[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+            double br[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+            w = mimas_kernel_line(dp->wt, d, br);
+        }
     } else {
         double f = g->kind == MIMAS_GRID_CARTESIAN
                        ? segment_fraction_box(s->a, s->b, lo, hi)

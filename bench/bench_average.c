@@ -104,7 +104,7 @@ int main(int argc, char **argv)
     struct {
         const char *name, *grid, *weight;
     } cases[] = {{"bins  x-y-z", xyz, "bins"}, {"gauss x-y-z", xyz, "gauss:w=0.001"},
-                 {"bins  r-z  ", rz, "bins"}};
+                 {"bins  r-z  ", rz, "bins"}, {"gauss r-z  ", rz, "gauss:w=0.001"}};
     printf("mimas average: %zu particles, %zu contacts per frame, spacing = w = d = 1 mm\n",
            f.particles.n, f.contacts.n);
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++)
