@@ -585,6 +585,93 @@ static void test_cylindrical_kernel_integrates_mass(void **state)
     gsl_rng_free(rng);
 }
 
+/* --exclude-types: contacts with excluded particles become wall contacts of
+ * the others, with the segment from the contact point; real wall contacts
+ * too.  On the LIGGGHTS hopper (types 1 and 2, mesh walls) with type 2
+ * excluded, V cstress of --grid none is
+ *   sum_{1-1} f (x) (r_i - r_j) + sum_{1-2} f_1 (x) (r_1 - c) + sum_walls f (x) (r - c). */
+static void test_exclude_types_as_walls(void **state)
+{
+    (void)state;
+    const char *inputs[1] = {data("hopper_walls/dump.hopper.atom.gz")};
+    const char *contacts[1] = {data("hopper_walls/dump.hopper.pgl.gz")};
+    const char *walls[1] = {data("hopper_walls/dump.hopper.wgl")};
+    mimas_reader_options ro;
+    mimas_reader_options_default(&ro);
+    ro.contacts = contacts;
+    ro.ncontacts = 1;
+    ro.contact_columns = KEYS;
+    ro.walls = walls;
+    ro.nwalls = 1;
+    ro.wall_columns = KEYS;
+    mimas_reader *r;
+    mimas_error err;
+    assert_int_equal(mimas_reader_open(&r, inputs, 1, &ro, &err), 0);
+    mimas_frame f;
+    mimas_frame_init(&f);
+    while (mimas_reader_next(r, &f, &err) == MIMAS_OK)
+        ;
+    mimas_reader_close(r);
+    const mimas_particles *p = &f.particles;
+    double T[9] = {0};
+    size_t mixed = 0;
+    for (size_t k = 0; k < f.contacts.n; k++) {
+        size_t i = f.contacts.i[k], j = f.contacts.j[k];
+        int ti = p->type[i], tj = p->type[j];
+        const double *F = f.contacts.force[k], *c = f.contacts.point[k];
+        double b[3], sign = 1;
+        size_t in = i;
+        if (ti == 1 && tj == 1) {
+            for (int m = 0; m < 3; m++)
+                b[m] = p->pos[i][m] - p->pos[j][m];
+        } else if (ti == 2 && tj == 2) {
+            continue;
+        } else {
+            in = ti == 1 ? i : j;
+            sign = ti == 1 ? 1 : -1;
+            for (int m = 0; m < 3; m++)
+                b[m] = p->pos[in][m] - c[m];
+            mixed++;
+        }
+        for (int x = 0; x < 3; x++)
+            for (int y = 0; y < 3; y++)
+                T[3 * x + y] += sign * F[x] * b[y];
+    }
+    for (size_t k = 0; k < f.walls.n; k++) {
+        size_t i = f.walls.particle[k];
+        if (p->type[i] != 1)
+            continue;
+        for (int x = 0; x < 3; x++)
+            for (int y = 0; y < 3; y++)
+                T[3 * x + y] += f.walls.force[k][x] * (p->pos[i][y] - f.walls.point[k][y]);
+    }
+    assert_true(mixed > 10);
+    mimas_average_options o;
+    memset(&o, 0, sizeof o);
+    assert_int_equal(mimas_grid_parse(&o.grid, "none", NULL, &err), 0);
+    assert_int_equal(mimas_weight_parse(&o.weight, "bins", &err), 0);
+    o.grid_none = 1;
+    const int32_t two = 2;
+    o.types = &two;
+    o.ntypes = 1;
+    o.exclude = 1;
+    mimas_average *a;
+    assert_int_equal(mimas_average_create(&a, &o, &err), 0);
+    assert_int_equal(mimas_average_add(a, &f, &err), 0);
+    double S[NSUMS];
+    mimas_average_sums(a, 0, S);
+    double V = mimas_box_volume(&f.box), scale = max_abs(T, 9);
+    for (int k = 0; k < 9; k++)
+        assert_close(S[S_C + k] * V, T[k], 1e-12 * scale);
+    /* only type-1 particles count: n V = their number */
+    size_t n1 = 0;
+    for (size_t k = 0; k < p->n; k++)
+        n1 += p->type[k] == 1;
+    assert_close(S[S_N] * V, (double)n1, 1e-9);
+    mimas_average_free(a);
+    mimas_frame_free(&f);
+}
+
 /* Two threads give the single-thread result up to summation order. */
 static void test_threads_agree(void **state)
 {
@@ -630,6 +717,7 @@ int main(void)
         cmocka_unit_test(test_threads_agree),
         cmocka_unit_test(test_lucy_and_shepard),
         cmocka_unit_test(test_cylindrical_kernel_integrates_mass),
+        cmocka_unit_test(test_exclude_types_as_walls),
     };
     return cmocka_run_group_tests_name("average", tests, NULL, NULL);
 }
