@@ -59,6 +59,14 @@ static const double gl_w[8] = {0.1894506104550685, 0.1826034150449236, 0.1691565
                                0.1495959888165767, 0.1246289712555339, 0.0951585116824928,
                                0.0622535239386479, 0.0271524594117541};
 
+/* Gauss-Legendre 4 and 8 points on [-1, 1] (half of each symmetric set). */
+static const double gl4_x[2] = {0.3399810435848563, 0.8611363115940526};
+static const double gl4_w[2] = {0.6521451548625461, 0.3478548451374538};
+static const double gl8_x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
+                                0.9602898564975363};
+static const double gl8_w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
+                                0.1012285362903763};
+
 /* The kernel averaged over the azimuth (PHYSICS 6, cylindrical grids without
  * phi cells): at the ring of radius r, height z about the axis, for a
  * particle at axis-frame position x, (1/pi) int_0^tm phi(D(t)) dt with
@@ -309,14 +317,22 @@ static void visit_segment(const mimas_deposit *dp, size_t cell, const int idx[3]
         const double *a = g->kind == MIMAS_GRID_CARTESIAN ? s->a : s->aa;
         const double *b = g->kind == MIMAS_GRID_CARTESIAN ? s->b : s->ab;
         if (g->kind == MIMAS_GRID_CYLINDRICAL && !g->gridded[1]) {
-            /* the azimuthal average along the segment: 16-point Gauss-Legendre */
+            /* the azimuthal average along the segment by Gauss-Legendre, with
+             * 4, 8 or 16 points for segments up to w/2, 2w or longer (the
+             * kernel varies on the scale w) */
+            double len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+                              (b[2] - a[2]) * (b[2] - a[2]));
+            double scale = dp->wt->kind == MIMAS_WEIGHT_LUCY ? dp->wt->w / 3.0 : dp->wt->w;
+            int half = len <= 0.5 * scale ? 2 : (len <= 2.0 * scale ? 4 : 8);
+            const double *xs = half == 2 ? gl4_x : (half == 4 ? gl8_x : gl_x);
+            const double *ws = half == 2 ? gl4_w : (half == 4 ? gl8_w : gl_w);
             w = 0.0;
-            for (int k = 0; k < 8; k++)
+            for (int k = 0; k < half; k++)
                 for (int sgn = -1; sgn <= 1; sgn += 2) {
-                    double t = 0.5 * (1.0 + sgn * gl_x[k]), x[3], gr[3];
+                    double t = 0.5 * (1.0 + sgn * xs[k]), x[3], gr[3];
                     for (int m = 0; m < 3; m++)
                         x[m] = a[m] + t * (b[m] - a[m]);
-                    w += 0.5 * gl_w[k] * ring_kernel(dp->wt, c[0], c[2], x, gr);
+                    w += 0.5 * ws[k] * ring_kernel(dp->wt, c[0], c[2], x, gr);
                 }
         } else {
             double d[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};

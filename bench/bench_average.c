@@ -3,7 +3,7 @@
  * gauss (w = d) on an x-y-z grid of spacing d and on an r-z grid of spacing d.
  * Prints particles/s and contacts/s of one core (contact time = time with
  * contacts minus time without).
- *   bench_average [--frames F] */
+ *   bench_average [--frames F] [--only CASE] */
 #include <config.h>
 
 #include <gsl/gsl_rng.h>
@@ -89,7 +89,13 @@ static double run(const mimas_frame *f, const char *grid, const char *weight, in
 
 int main(int argc, char **argv)
 {
-    int frames = argc > 2 && !strcmp(argv[1], "--frames") ? atoi(argv[2]) : 3;
+    int frames = 3, only = -1;
+    for (int k = 1; k + 1 < argc; k += 2) {
+        if (!strcmp(argv[k], "--frames"))
+            frames = atoi(argv[k + 1]);
+        else if (!strcmp(argv[k], "--only"))
+            only = atoi(argv[k + 1]); /* one case, for profiling */
+    }
     const int m = 46; /* 97,336 particles, 292,008 contacts */
     const double d = 0.001, L = m * d;
     mimas_frame f, bare;
@@ -109,6 +115,8 @@ int main(int argc, char **argv)
            f.particles.n, f.contacts.n);
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++)
         for (int threads = 1; threads <= 2; threads++) {
+            if (only >= 0 && (size_t)only != k)
+                continue;
             double t_all = run(&f, cases[k].grid, cases[k].weight, frames, threads);
             double t_p = run(&bare, cases[k].grid, cases[k].weight, frames, threads);
             printf("  %s  %d thread%s  %.3f s/frame: particles %.3g /s, contacts %.3g /s\n",

@@ -547,7 +547,8 @@ static void test_lucy_and_shepard(void **state)
 }
 
 /* On an r-z grid the kernel is averaged over the azimuth: the grid still
- * integrates rho to the total mass (particles away from the axis). */
+ * integrates rho to the total mass, and the contact stress (in r, phi, z
+ * components at r_i) to its total (particles away from the axis). */
 static void test_cylindrical_kernel_integrates_mass(void **state)
 {
     (void)state;
@@ -567,17 +568,51 @@ static void test_cylindrical_kernel_integrates_mass(void **state)
     double total = 0;
     for (size_t k = 0; k < n; k++)
         total += f.particles.mass[k];
+    /* contacts between neighbours in the list (branches of about 1-2 mm) and
+     * their stress in (r, phi, z) components at r_i, computed here */
+    mimas_error err;
+    const size_t nc = 40;
+    mimas_table_set_present(&f.contacts, &mimas_contacts_desc, MIMAS_C_FORCE, &err);
+    mimas_table_resize(&f.contacts, &mimas_contacts_desc, nc, &err);
+    f.has_contacts = 1;
+    for (size_t k = 0; k < nc; k++) {
+        size_t i = k, j = k + 1;
+        for (int d = 0; d < 3; d++) /* j within 2 mm of i */
+            f.particles.pos[j][d] = f.particles.pos[i][d] + 0.002 * (gsl_rng_uniform(rng) - 0.5);
+        f.contacts.i[k] = i;
+        f.contacts.j[k] = j;
+        for (int d = 0; d < 3; d++)
+            f.contacts.force[k][d] = gsl_rng_uniform(rng) - 0.5;
+    }
+    double T[9] = {0};
+    for (size_t k = 0; k < nc; k++) {
+        const double *ri = f.particles.pos[k], *rj = f.particles.pos[k + 1];
+        double rr = hypot(ri[0], ri[1]), c = ri[0] / rr, sn = ri[1] / rr;
+        const double *F = f.contacts.force[k];
+        double b[3] = {ri[0] - rj[0], ri[1] - rj[1], ri[2] - rj[2]};
+        double Fl[3] = {c * F[0] + sn * F[1], -sn * F[0] + c * F[1], F[2]};
+        double bl[3] = {c * b[0] + sn * b[1], -sn * b[0] + c * b[1], b[2]};
+        for (int x = 0; x < 3; x++)
+            for (int y = 0; y < 3; y++)
+                T[3 * x + y] += Fl[x] * bl[y];
+    }
     const char *weights[2] = {"gauss:w=0.0015", "lucy:c=0.004"};
     for (int k = 0; k < 2; k++) {
         /* spacing w/4.5 (Lucy: c/12); the grid reaches past the kernels' support */
         mimas_average *av = average_frame(&f, "r=0.01:0.05:120,z=0:0.02:60", weights[k]);
         const mimas_grid *g = mimas_average_grid(av);
-        double mass = 0, S[NSUMS];
+        double mass = 0, C[9] = {0}, S[NSUMS];
         for (size_t c = 0; c < mimas_grid_cells(g); c++) {
             mimas_average_sums(av, c, S);
-            mass += S[S_M] * mimas_grid_cell_volume(g, c);
+            double V = mimas_grid_cell_volume(g, c);
+            mass += S[S_M] * V;
+            for (int q = 0; q < 9; q++)
+                C[q] += S[S_C + q] * V;
         }
         assert_close(mass, total, 1e-6 * total);
+        double scale = max_abs(T, 9);
+        for (int q = 0; q < 9; q++)
+            assert_close(C[q], T[q], 1e-6 * scale);
         mimas_average_free(av);
     }
     mimas_frame_free(&f);
