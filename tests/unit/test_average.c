@@ -289,6 +289,33 @@ static void test_simple_cubic_solid_fraction(void **state)
     free(pos);
 }
 
+/* sum over the cells of V_cell times primary sum q (the grid integral). */
+static double grid_integral(const mimas_average *av, int q)
+{
+    const mimas_grid *g = mimas_average_grid(av);
+    double total = 0, S[NSUMS];
+    for (size_t c = 0; c < mimas_grid_cells(g); c++) {
+        mimas_average_sums(av, c, S);
+        total += S[q] * mimas_grid_cell_volume(g, c);
+    }
+    return total;
+}
+
+/* n particles at random in the 1 cm cube, with velocities v(x). */
+static double random_cloud(mimas_frame *f, size_t n, gsl_rng *rng,
+                           void (*vel)(const double x[3], double v[3]), double (*pos)[3])
+{
+    for (size_t k = 0; k < n; k++)
+        for (int d = 0; d < 3; d++)
+            pos[k][d] = 0.01 * gsl_rng_uniform(rng);
+    mimas_box box = {{0, 0, 0}, {0.01, 0.01, 0.01}, 0, 0, 0, {0, 0, 0}};
+    make_frame(f, n, (const double (*)[3])pos, 0.0005, vel, &box);
+    double total = 0;
+    for (size_t k = 0; k < n; k++)
+        total += f->particles.mass[k];
+    return total;
+}
+
 /* A Gaussian grid integrates rho to the total mass. */
 static void test_gauss_integrates_mass(void **state)
 {
@@ -296,27 +323,14 @@ static void test_gauss_integrates_mass(void **state)
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     const size_t n = 200;
     double (*pos)[3] = malloc(sizeof *pos * n);
-    for (size_t k = 0; k < n; k++)
-        for (int d = 0; d < 3; d++)
-            pos[k][d] = 0.01 * gsl_rng_uniform(rng);
-    mimas_box box = {{0, 0, 0}, {0.01, 0.01, 0.01}, 0, 0, 0, {0, 0, 0}};
     mimas_frame f;
     mimas_frame_init(&f);
-    make_frame(&f, n, (const double (*)[3])pos, 0.0005, still, &box);
-    double total = 0;
-    for (size_t k = 0; k < n; k++)
-        total += f.particles.mass[k];
+    double total = random_cloud(&f, n, rng, still, pos);
     /* w = 1 mm, the default cutoff 3 w: the grid reaches 3 w beyond the box,
      * spacing w/3 (a midpoint sum; the kernel's kink at the cutoff limits it) */
     mimas_average *av = average_frame(&f, "x=-0.0035:0.0135:51,y=-0.0035:0.0135:51,"
                                           "z=-0.0035:0.0135:51", "gauss:w=0.001");
-    const mimas_grid *g = mimas_average_grid(av);
-    double mass = 0, S[NSUMS];
-    for (size_t c = 0; c < mimas_grid_cells(g); c++) {
-        mimas_average_sums(av, c, S);
-        mass += S[S_M] * mimas_grid_cell_volume(g, c);
-    }
-    assert_close(mass, total, 1e-6 * total);
+    assert_close(grid_integral(av, S_M), total, 1e-6 * total);
     mimas_average_free(av);
     mimas_frame_free(&f);
     free(pos);
@@ -499,25 +513,12 @@ static void test_lucy_and_shepard(void **state)
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     const size_t n = 300;
     double (*pos)[3] = malloc(sizeof *pos * n);
-    for (size_t k = 0; k < n; k++)
-        for (int d = 0; d < 3; d++)
-            pos[k][d] = 0.01 * gsl_rng_uniform(rng);
-    mimas_box box = {{0, 0, 0}, {0.01, 0.01, 0.01}, 0, 0, 0, {0, 0, 0}};
     mimas_frame f;
     mimas_frame_init(&f);
-    make_frame(&f, n, (const double (*)[3])pos, 0.0005, random_velocity, &box);
-    double total = 0;
-    for (size_t k = 0; k < n; k++)
-        total += f.particles.mass[k];
+    double total = random_cloud(&f, n, rng, random_velocity, pos);
     mimas_average *av = average_frame(&f, "x=-0.003:0.013:48,y=-0.003:0.013:48,"
                                           "z=-0.003:0.013:48", "lucy:c=0.003");
-    const mimas_grid *g = mimas_average_grid(av);
-    double mass = 0, S[NSUMS];
-    for (size_t c = 0; c < mimas_grid_cells(g); c++) {
-        mimas_average_sums(av, c, S);
-        mass += S[S_M] * mimas_grid_cell_volume(g, c);
-    }
-    assert_close(mass, total, 1e-6 * total);
+    assert_close(grid_integral(av, S_M), total, 1e-6 * total);
     mimas_average_free(av);
 
     const double w = 0.002, C = 3.0, x0[3] = {0.004, 0.0055, 0.006};
