@@ -350,6 +350,54 @@ static void visit_segment(const mimas_deposit *dp, size_t cell, const int idx[3]
         s->fn(s->user, cell, w, NULL);
 }
 
+/* Bins on a Cartesian grid: walk the segment through the cells.  The
+ * parameters where it crosses grid planes split it into pieces that each lie
+ * in one cell (the cell of the piece's midpoint), so every piece gets its
+ * exact length fraction and the pieces add up to the part on the grid. */
+static int walk_segment(const mimas_deposit *dp, const double a[3], const double b[3],
+                        deposit_fn fn, void *user)
+{
+    const mimas_grid *g = dp->grid;
+    double t[64];
+    int nt = 0;
+    t[nt++] = 0.0;
+    for (int d = 0; d < 3; d++) {
+        double lo = fmin(a[d], b[d]), hi = fmax(a[d], b[d]), len = b[d] - a[d];
+        if (!(hi > lo))
+            continue;
+        double k0 = ceil((fmax(lo, g->lo[d]) - g->lo[d]) / dp->h[d]);
+        for (double k = k0;; k++) {
+            double x = g->lo[d] + k * dp->h[d];
+            if (x >= hi || x > g->hi[d])
+                break;
+            if (nt >= 62)
+                return 0; /* a long segment: the cell search does it */
+            if (x > lo)
+                t[nt++] = (x - a[d]) / len;
+        }
+    }
+    t[nt++] = 1.0;
+    /* insertion sort: a handful of values */
+    for (int i = 1; i < nt; i++)
+        for (int j = i; j > 0 && t[j] < t[j - 1]; j--) {
+            double x = t[j];
+            t[j] = t[j - 1];
+            t[j - 1] = x;
+        }
+    for (int i = 0; i + 1 < nt; i++) {
+        double dt = t[i + 1] - t[i];
+        if (!(dt > 0))
+            continue;
+        double tm = 0.5 * (t[i] + t[i + 1]), q[3];
+        for (int d = 0; d < 3; d++)
+            q[d] = a[d] + tm * (b[d] - a[d]);
+        size_t cell;
+        if (cell_of(g, dp->h, q, &cell))
+            fn(user, cell, dt / dp->cart_volume, NULL);
+    }
+    return 1;
+}
+
 void mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const double b[3],
                            deposit_fn fn, void *user)
 {
@@ -385,6 +433,9 @@ void mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const dou
         mimas_grid_to_axis(g, as, aa);
         mimas_grid_to_axis(g, bs, ab);
         mimas_grid_to_axis(g, mid, am);
+        if (dp->wt->kind == MIMAS_WEIGHT_BINS && g->kind == MIMAS_GRID_CARTESIAN &&
+            walk_segment(dp, as, bs, fn, user))
+            continue;
         segment_ctx ctx = {as, bs, aa, ab, fn, user};
         candidate_cells(dp, am, reach, visit_segment, &ctx);
     }
