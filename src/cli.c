@@ -8,6 +8,8 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#include <unistd.h>
 
 #define MAX_OPTIONS 64
 
@@ -273,4 +275,37 @@ char *cli_command_line(int argc, char **argv)
         strcat(s, argv[k]);
     }
     return s;
+}
+
+static double seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+void cli_progress_start(cli_progress *p, const cli_inputs *in)
+{
+    p->on = !in->quiet && isatty(STDERR_FILENO);
+    p->last = seconds();
+}
+
+void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, long long step,
+                        double time)
+{
+    if (!p->on)
+        return;
+    double now = seconds();
+    if (now - p->last < 0.5)
+        return;
+    p->last = now;
+    fprintf(stderr, "\rmimas %s: %zu frames (step %lld, time %g)   ", cmd->name, frames, step,
+            time);
+    fflush(stderr);
+}
+
+void cli_progress_done(cli_progress *p)
+{
+    if (p->on)
+        fputs("\r\033[K", stderr);
 }

@@ -56,6 +56,18 @@ void cli_print_man(const cli_command *cmd, const char *version, FILE *out);
 /* "mimas NAME: message" on stderr; returns status. */
 int cli_fail(const cli_command *cmd, int status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
+/* A progress line on standard error, only when it is a terminal and not
+ * quiet, at most twice a second: "mimas CMD: N frames (step S, time T)".
+ * cli_progress_done ends the line. */
+typedef struct cli_progress {
+    int on;
+    double last;
+} cli_progress;
+void cli_progress_start(cli_progress *p, const cli_inputs *in);
+void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, long long step,
+                        double time);
+void cli_progress_done(cli_progress *p);
+
 /* "mimas ARGS..." (malloc'd), for provenance attributes. */
 char *cli_command_line(int argc, char **argv);
 /* Parses a number; returns 0 on success. */

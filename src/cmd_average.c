@@ -304,6 +304,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
     mimas_frame_init(&f);
     long seen = 0;
     int header_done = 0;
+    cli_progress prog;
+    cli_progress_start(&prog, &in);
     while (!status && (status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
         if ((a.has_from || a.has_to) && isnan(f.time)) {
             status = mimas_error_set(&err, MIMAS_EUSAGE, "%s: frame at step %lld has no time; "
@@ -316,6 +318,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
         if (seen++ % a.every)
             continue;
         status = mimas_average_add(avg, &f, &err);
+        cli_progress_frame(&prog, cmd, mimas_average_frames(avg), (long long)f.step, f.time);
         if (!status && one) {
             mimas_average_reset(one);
             status = mimas_average_add(one, &f, &err);
@@ -331,10 +334,15 @@ static int run(const cli_command *cmd, int argc, char **argv)
         if (status && status != MIMAS_EIO)
             mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
     }
+    cli_progress_done(&prog);
+    size_t skipped = mimas_reader_skipped(r);
     mimas_frame_free(&f);
     mimas_reader_close(r);
     cli_inputs_free(&in);
     mimas_average_free(one);
+    if (skipped && status == MIMAS_END)
+        fprintf(stderr, "mimas average: skipped %zu frames whose contact data were missing\n",
+                skipped);
     if (status == MIMAS_END && mimas_average_frames(avg) == 0)
         status = mimas_error_set(&err, MIMAS_EDATA, "%s: no frame in the selected time range",
                                  argv[first]);

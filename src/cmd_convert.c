@@ -57,8 +57,13 @@ static int run(const cli_command *cmd, int argc, char **argv)
     mimas_frame f;
     mimas_frame_init(&f);
     rc = mimas_writer_open(&w, a.output, &o, &err);
-    while (!rc && (rc = mimas_reader_next(r, &f, &err)) == MIMAS_OK)
+    cli_progress prog;
+    cli_progress_start(&prog, &in);
+    while (!rc && (rc = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
         rc = mimas_writer_append(w, &f, &err);
+        cli_progress_frame(&prog, cmd, mimas_writer_frames(w), (long long)f.step, f.time);
+    }
+    cli_progress_done(&prog);
     if (rc == MIMAS_END && mimas_writer_frames(w) == 0)
         rc = mimas_error_set(&err, MIMAS_EDATA, "%s: no frames to convert", argv[first]);
     if (rc == MIMAS_END)
