@@ -70,7 +70,7 @@ extern "C" int mimas_voro_cells(const mimas_box *b, size_t n, const double (*pos
     try {
         if (mimas_box_is_triclinic(b)) {
             if (!(b->periodic[0] && b->periodic[1] && b->periodic[2]))
-                return mimas_error_set(err, MIMAS_EUSAGE,
+                return mimas_error_set(err, MIMAS_EDATA,
                                        "a triclinic box must be periodic along x, y and z "
                                        "for Voronoi cells");
             double bx = b->hi[0] - b->lo[0], by = b->hi[1] - b->lo[1], bz = b->hi[2] - b->lo[2];

@@ -7,5 +7,6 @@
 extern const cli_command cmd_average;
 extern const cli_command cmd_convert;
 extern const cli_command cmd_info;
+extern const cli_command cmd_voronoi;
 
 #endif

@@ -11,6 +11,7 @@ static const cli_command *const commands[] = {
     &cmd_info,
     &cmd_convert,
     &cmd_average,
+    &cmd_voronoi,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 

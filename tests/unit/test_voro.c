@@ -131,7 +131,7 @@ static void test_outside_point_is_an_error(void **state)
                      MIMAS_EDATA);
     mimas_box tilted_open = {{0, 0, 0}, {1, 1, 1}, 0.1, 0, 0, {1, 1, 0}};
     assert_int_equal(mimas_voro_cells(&tilted_open, 1, (const double (*)[3])pos, NULL, vol, NULL,
-                                      &err), MIMAS_EUSAGE);
+                                      &err), MIMAS_EDATA);
 }
 
 int main(void)
