@@ -309,3 +309,37 @@ void cli_progress_done(cli_progress *p)
     if (p->on)
         fputs("\r\033[K", stderr);
 }
+
+int cli_output_open(cli_output *o, const char *path, mimas_error *err)
+{
+    memset(o, 0, sizeof *o);
+    if (!path || !strcmp(path, "-")) {
+        o->fp = stdout;
+        return MIMAS_OK;
+    }
+    o->path = path;
+    snprintf(o->tmp, sizeof o->tmp, "%s.tmp%ld", path, (long)getpid());
+    o->fp = fopen(o->tmp, "w");
+    if (!o->fp)
+        return mimas_error_set(err, MIMAS_EIO, "%s: cannot write: %s", path, strerror(errno));
+    return MIMAS_OK;
+}
+
+int cli_output_close(cli_output *o, int ok, mimas_error *err)
+{
+    if (!o->fp)
+        return MIMAS_OK;
+    int rc = MIMAS_OK;
+    if (!o->path) {
+        if (ok && fflush(stdout) != 0)
+            rc = mimas_error_set(err, MIMAS_EIO, "cannot write the table");
+    } else {
+        int closed = fclose(o->fp) == 0;
+        if (ok && (!closed || rename(o->tmp, o->path) != 0))
+            rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", o->path);
+        if (!ok || rc)
+            remove(o->tmp);
+    }
+    o->fp = NULL;
+    return rc;
+}

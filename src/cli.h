@@ -68,6 +68,19 @@ void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, 
                         double time);
 void cli_progress_done(cli_progress *p);
 
+/* A table written to standard output, or to a file under a temporary name
+ * renamed into place when complete (no partial output). */
+typedef struct cli_output {
+    FILE *fp;
+    const char *path;   /* NULL: standard output */
+    char tmp[4200];
+} cli_output;
+/* path NULL or "-": standard output. */
+int cli_output_open(cli_output *o, const char *path, mimas_error *err);
+/* Finishes the table: with ok, flushes (and renames the file into place);
+ * else removes the temporary file.  Returns MIMAS_OK or a write error. */
+int cli_output_close(cli_output *o, int ok, mimas_error *err);
+
 /* "mimas ARGS..." (malloc'd), for provenance attributes. */
 char *cli_command_line(int argc, char **argv);
 /* Parses a number; returns 0 on success. */

@@ -278,19 +278,11 @@ static int run(const cli_command *cmd, int argc, char **argv)
     }
     /* outputs: the table (a temporary name renamed at the end, or standard
      * output) unless only -o was asked for; the HDF5 file */
-    FILE *out = NULL;
-    char tmp[4096] = "";
+    cli_output table = {0};
     int status = MIMAS_OK;
-    int want_table = a.tsv || !a.output;
-    if (want_table && a.tsv && strcmp(a.tsv, "-") != 0) {
-        snprintf(tmp, sizeof tmp, "%s.tmp%ld", a.tsv, (long)getpid());
-        out = fopen(tmp, "w");
-        if (!out)
-            status = mimas_error_set(&err, MIMAS_EIO, "%s: cannot write: %s", a.tsv,
-                                     strerror(errno));
-    } else if (want_table) {
-        out = stdout;
-    }
+    if (a.tsv || !a.output)
+        status = cli_output_open(&table, a.tsv, &err);
+    FILE *out = table.fp;
     mimas_fields_file *ff = NULL;
     if (!status && a.output)
         status = mimas_fields_open(&ff, a.output, &err);
@@ -360,16 +352,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
             status = MIMAS_END;
     }
     mimas_average_free(avg);
-    if (out && out != stdout) {
-        if (fclose(out) != 0 && status == MIMAS_END)
-            status = mimas_error_set(&err, MIMAS_EIO, "%s: cannot write the table", a.tsv);
-        if (status == MIMAS_END && rename(tmp, a.tsv) != 0)
-            status = mimas_error_set(&err, MIMAS_EIO, "%s: cannot write the table", a.tsv);
-        if (status != MIMAS_END)
-            remove(tmp);
-    } else if (out && fflush(stdout) != 0 && status == MIMAS_END) {
-        status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
-    }
+    int closed = cli_output_close(&table, status == MIMAS_END, &err);
+    if (closed)
+        status = closed;
     mimas_fields_abort(ff);
     if (status != MIMAS_END) {
         if (status == MIMAS_EIO && a.output && !strstr(err.msg, a.output))

@@ -116,17 +116,10 @@ static int run(const cli_command *cmd, int argc, char **argv)
         cli_inputs_free(&in);
         return rc < 0 ? 0 : rc;
     }
-    char tmp[4096] = "";
-    FILE *out = stdout;
     mimas_error err;
-    int status = MIMAS_OK;
-    if (a.tsv && strcmp(a.tsv, "-") != 0) {
-        snprintf(tmp, sizeof tmp, "%s.tmp%ld", a.tsv, (long)getpid());
-        out = fopen(tmp, "w");
-        if (!out)
-            status = mimas_error_set(&err, MIMAS_EIO, "%s: cannot write: %s", a.tsv,
-                                     strerror(errno));
-    }
+    cli_output table;
+    int status = cli_output_open(&table, a.tsv, &err);
+    FILE *out = table.fp;
     if (out)
         fputs("step\tid\tx\ty\tz\tvolume\tnu\tfaces\n", out);
     mimas_frame f;
@@ -149,17 +142,12 @@ static int run(const cli_command *cmd, int argc, char **argv)
     mimas_frame_free(&f);
     mimas_reader_close(r);
     cli_inputs_free(&in);
-    if (out && out != stdout) {
-        if (fclose(out) != 0 && status == MIMAS_END)
-            status = mimas_error_set(&err, MIMAS_EIO, "%s: cannot write the table", a.tsv);
-        if (status == MIMAS_END && rename(tmp, a.tsv) != 0)
-            status = mimas_error_set(&err, MIMAS_EIO, "%s: cannot write the table", a.tsv);
-        if (status != MIMAS_END)
-            remove(tmp);
-    }
+    int closed = cli_output_close(&table, status == MIMAS_END, &err);
+    if (closed)
+        status = closed;
     if (status != MIMAS_END)
         return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
-    return fflush(stdout) ? cli_fail(cmd, 2, "cannot write the table") : 0;
+    return 0;
 }
 
 const cli_command cmd_voronoi = {
