@@ -253,6 +253,22 @@ static void still(const double x[3], double v[3])
     v[0] = v[1] = v[2] = 0;
 }
 
+/* Points at the centres of an m x m x m simple cubic lattice of spacing a. */
+static double (*cubic_lattice(int m, double a, size_t *n))[3]
+{
+    double (*pos)[3] = malloc(sizeof *pos * (size_t)(m * m * m));
+    *n = 0;
+    for (int i = 0; i < m; i++)
+        for (int j = 0; j < m; j++)
+            for (int k = 0; k < m; k++) {
+                pos[*n][0] = (i + 0.5) * a;
+                pos[*n][1] = (j + 0.5) * a;
+                pos[*n][2] = (k + 0.5) * a;
+                (*n)++;
+            }
+    return pos;
+}
+
 /* Simple cubic packing of touching spheres (R = a/2): nu = pi/6 in every cell
  * whose edges are whole multiples of a, wherever the cell edges cut. */
 static void test_simple_cubic_solid_fraction(void **state)
@@ -260,16 +276,8 @@ static void test_simple_cubic_solid_fraction(void **state)
     (void)state;
     const int m = 10;
     const double a = 0.002;
-    double (*pos)[3] = malloc(sizeof *pos * m * m * m);
-    size_t n = 0;
-    for (int i = 0; i < m; i++)
-        for (int j = 0; j < m; j++)
-            for (int k = 0; k < m; k++) {
-                pos[n][0] = (i + 0.5) * a;
-                pos[n][1] = (j + 0.5) * a;
-                pos[n][2] = (k + 0.5) * a;
-                n++;
-            }
+    size_t n;
+    double (*pos)[3] = cubic_lattice(m, a, &n);
     mimas_box box = {{0, 0, 0}, {m * a, m * a, m * a}, 0, 0, 0, {1, 1, 1}};
     mimas_frame f;
     mimas_frame_init(&f);
@@ -454,16 +462,8 @@ static void test_simple_shear(void **state)
     (void)state;
     const int m = 16;
     const double a = 0.001;
-    double (*pos)[3] = malloc(sizeof *pos * m * m * m);
-    size_t n = 0;
-    for (int i = 0; i < m; i++)
-        for (int j = 0; j < m; j++)
-            for (int k = 0; k < m; k++) {
-                pos[n][0] = (i + 0.5) * a;
-                pos[n][1] = (j + 0.5) * a;
-                pos[n][2] = (k + 0.5) * a;
-                n++;
-            }
+    size_t n;
+    double (*pos)[3] = cubic_lattice(m, a, &n);
     mimas_box box = {{0, 0, 0}, {m * a, m * a, m * a}, 0, 0, 0, {0, 0, 0}};
     mimas_frame f;
     mimas_frame_init(&f);

@@ -21,19 +21,10 @@
 
 #include "backend.h"
 #include "frame.h"
+#include "scratch.h"
 
 #define TOL 1e-15 /* lengths of order 1e-3 m written with at most 6 digits */
 
-static char dir[] = "/tmp/mimas-test-mercury-XXXXXX";
-
-static const char *tmp(const char *name)
-{
-    static char buf[32][256];
-    static int k;
-    k = (k + 1) % 32;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
-    return buf[k];
-}
 
 /* A shipped data file: $TEST_SRCDIR/data/mercury/NAME (make check sets
  * TEST_SRCDIR; run by hand from the source tree otherwise). */
@@ -49,7 +40,7 @@ static const char *shipped(const char *name)
 
 static const char *write_bytes(const char *name, const char *bytes, size_t n)
 {
-    const char *path = tmp(name);
+    const char *path = scratch_path(name);
     FILE *fp = fopen(path, "wb");
     assert_non_null(fp);
     assert_int_equal(fwrite(bytes, 1, n, fp), n);
@@ -328,14 +319,14 @@ static void test_split_and_gzip_inputs(void **state)
     const char *d[] = {write_text("split.data.0", a), write_text("split.data.1", b)};
     write_text("split.fstat.0", fa);
     write_text("split.fstat.1", fb);
-    const char *pattern[] = {tmp("split.fstat.*")};
+    const char *pattern[] = {scratch_path("split.fstat.*")};
     read_box3d(d, 2, pattern, 1);
 
-    gzFile gz = gzopen(tmp("box3d.data.gz"), "wb");
+    gzFile gz = gzopen(scratch_path("box3d.data.gz"), "wb");
     assert_non_null(gz);
     assert_true(gzputs(gz, a) > 0 && gzputs(gz, b) > 0);
     assert_int_equal(gzclose(gz), Z_OK);
-    const char *dz[] = {tmp("box3d.data.gz")}, *c[] = {shipped("box3d.fstat")};
+    const char *dz[] = {scratch_path("box3d.data.gz")}, *c[] = {shipped("box3d.fstat")};
     read_box3d(dz, 1, c, 1);
 }
 
@@ -575,23 +566,9 @@ static void test_options(void **state)
     assert_int_equal(reader_mercury.open(&st, d, 1, &o, &err), MIMAS_EUSAGE);
     o.density = 0;
     assert_int_equal(reader_mercury.open(&st, d, 0, &o, &err), MIMAS_EUSAGE);
-    const char *missing[] = {tmp("does-not-exist.data")};
+    const char *missing[] = {scratch_path("does-not-exist.data")};
     assert_int_equal(reader_mercury.open(&st, missing, 1, &o, &err), MIMAS_EDATA);
     assert_non_null(strstr(err.msg, "does-not-exist.data: cannot open"));
-}
-
-static int setup(void **state)
-{
-    (void)state;
-    return mkdtemp(dir) ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    return system(cmd);
 }
 
 int main(void)
@@ -607,5 +584,5 @@ int main(void)
         cmocka_unit_test(test_bad_data),
         cmocka_unit_test(test_options),
     };
-    return cmocka_run_group_tests_name("mercury", tests, setup, teardown);
+    return cmocka_run_group_tests_name("mercury", tests, scratch_setup, scratch_teardown);
 }

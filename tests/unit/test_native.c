@@ -19,20 +19,11 @@
 
 #include "native.h"
 #include "random_frame.h"
+#include "scratch.h"
 
 /* internal: an append without its commit (src/native_write.c) */
 int mimas_writer_stage(mimas_writer *w, const mimas_frame *f, mimas_error *err);
 
-static char dir[] = "/tmp/mimas-test-native-XXXXXX";
-
-static const char *tmp(const char *name)
-{
-    static char buf[4][256];
-    static int k;
-    k = (k + 1) % 4;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
-    return buf[k];
-}
 
 /* Frame k of a reproducible sequence: counts vary; frame 2 has no contacts;
  * frame 4 has more particles than any earlier one. */
@@ -102,22 +93,22 @@ static void check_frames(const char *path, unsigned long seed, size_t nframes, i
 static void test_round_trip(void **state)
 {
     (void)state;
-    write_frames(tmp("rt.h5"), 1, 6, 0);
-    check_frames(tmp("rt.h5"), 1, 6, 0, 0);
+    write_frames(scratch_path("rt.h5"), 1, 6, 0);
+    check_frames(scratch_path("rt.h5"), 1, 6, 0, 0);
 }
 
 static void test_random_access_reverse(void **state)
 {
     (void)state;
-    write_frames(tmp("rev.h5"), 2, 6, 0);
-    check_frames(tmp("rev.h5"), 2, 6, 0, 1);
+    write_frames(scratch_path("rev.h5"), 2, 6, 0);
+    check_frames(scratch_path("rev.h5"), 2, 6, 0, 1);
 }
 
 static void test_triclinic_round_trip(void **state)
 {
     (void)state;
-    write_frames(tmp("tri.h5"), 3, 5, 1);
-    check_frames(tmp("tri.h5"), 3, 5, 1, 0);
+    write_frames(scratch_path("tri.h5"), 3, 5, 1);
+    check_frames(scratch_path("tri.h5"), 3, 5, 1, 0);
 }
 
 static off_t file_size(const char *path)
@@ -132,7 +123,7 @@ static off_t file_size(const char *path)
 static void test_killed_writer_keeps_committed_frames(void **state)
 {
     (void)state;
-    const char *path = tmp("killed.h5");
+    const char *path = scratch_path("killed.h5");
     int fd[2];
     assert_int_equal(pipe(fd), 0);
     pid_t pid = fork();
@@ -206,37 +197,37 @@ static void expect_open_error(const char *path, const char *fragment)
 static void test_bad_files(void **state)
 {
     (void)state;
-    FILE *fp = fopen(tmp("text.h5"), "w");
+    FILE *fp = fopen(scratch_path("text.h5"), "w");
     fputs("ITEM: TIMESTEP\n0\n", fp);
     fclose(fp);
-    expect_open_error(tmp("text.h5"), "not an HDF5 file");
+    expect_open_error(scratch_path("text.h5"), "not an HDF5 file");
 
-    fclose(fopen(tmp("empty.h5"), "w"));
-    expect_open_error(tmp("empty.h5"), "empty file");
+    fclose(fopen(scratch_path("empty.h5"), "w"));
+    expect_open_error(scratch_path("empty.h5"), "empty file");
 
-    expect_open_error(tmp("does-not-exist.h5"), "No such file");
+    expect_open_error(scratch_path("does-not-exist.h5"), "No such file");
 
     /* an HDF5 file that is not ours */
-    hid_t f = H5Fcreate(tmp("other.h5"), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t f = H5Fcreate(scratch_path("other.h5"), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     H5Fclose(f);
-    expect_open_error(tmp("other.h5"), "not an H5MD file");
+    expect_open_error(scratch_path("other.h5"), "not an H5MD file");
 
     /* missing dataset */
-    write_frames(tmp("missing.h5"), 5, 2, 0);
-    f = H5Fopen(tmp("missing.h5"), H5F_ACC_RDWR, H5P_DEFAULT);
+    write_frames(scratch_path("missing.h5"), 5, 2, 0);
+    f = H5Fopen(scratch_path("missing.h5"), H5F_ACC_RDWR, H5P_DEFAULT);
     assert_true(H5Ldelete(f, "/particles/all/position/value", H5P_DEFAULT) >= 0);
     H5Fclose(f);
-    expect_open_error(tmp("missing.h5"), "missing dataset /particles/all/position/value");
+    expect_open_error(scratch_path("missing.h5"), "missing dataset /particles/all/position/value");
 
-    write_frames(tmp("nooffset.h5"), 5, 2, 0);
-    f = H5Fopen(tmp("nooffset.h5"), H5F_ACC_RDWR, H5P_DEFAULT);
+    write_frames(scratch_path("nooffset.h5"), 5, 2, 0);
+    f = H5Fopen(scratch_path("nooffset.h5"), H5F_ACC_RDWR, H5P_DEFAULT);
     assert_true(H5Ldelete(f, "/contacts/all/offset", H5P_DEFAULT) >= 0);
     H5Fclose(f);
-    expect_open_error(tmp("nooffset.h5"), "missing dataset /contacts/all/offset");
+    expect_open_error(scratch_path("nooffset.h5"), "missing dataset /contacts/all/offset");
 
     /* a newer major version */
-    write_frames(tmp("newer.h5"), 6, 1, 0);
-    f = H5Fopen(tmp("newer.h5"), H5F_ACC_RDWR, H5P_DEFAULT);
+    write_frames(scratch_path("newer.h5"), 6, 1, 0);
+    f = H5Fopen(scratch_path("newer.h5"), H5F_ACC_RDWR, H5P_DEFAULT);
     hid_t g = H5Gopen2(f, "/mimas", H5P_DEFAULT);
     hid_t a = H5Aopen(g, "format_version", H5P_DEFAULT);
     int v[2] = {2, 0};
@@ -244,7 +235,7 @@ static void test_bad_files(void **state)
     H5Aclose(a);
     H5Gclose(g);
     H5Fclose(f);
-    expect_open_error(tmp("newer.h5"), "format version 2.0 is newer");
+    expect_open_error(scratch_path("newer.h5"), "format version 2.0 is newer");
 }
 
 static void test_writer_rejects_inconsistent_frames(void **state)
@@ -255,7 +246,7 @@ static void test_writer_rejects_inconsistent_frames(void **state)
     mimas_writer_options o;
     mimas_writer_options_default(&o);
     o.atomic = 1;
-    const char *path = tmp("atomic.h5");
+    const char *path = scratch_path("atomic.h5");
     assert_int_equal(mimas_writer_open(&w, path, &o, &err), MIMAS_OK);
     mimas_frame f;
     mimas_frame_init(&f);
@@ -278,7 +269,7 @@ static void test_writer_rejects_inconsistent_frames(void **state)
 static void test_unknown_contact_id_is_reported(void **state)
 {
     (void)state;
-    const char *path = tmp("badid.h5");
+    const char *path = scratch_path("badid.h5");
     write_frames(path, 8, 2, 0);
     hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
     hid_t ds = H5Dopen2(f, "/contacts/all/j", H5P_DEFAULT);
@@ -304,20 +295,6 @@ static void test_unknown_contact_id_is_reported(void **state)
     mimas_native_close(r);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    return mkdtemp(dir) ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    return system(cmd);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -329,5 +306,5 @@ int main(void)
         cmocka_unit_test(test_writer_rejects_inconsistent_frames),
         cmocka_unit_test(test_unknown_contact_id_is_reported),
     };
-    return cmocka_run_group_tests_name("native", tests, setup, teardown);
+    return cmocka_run_group_tests_name("native", tests, scratch_setup, scratch_teardown);
 }

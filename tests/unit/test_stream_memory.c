@@ -20,9 +20,9 @@
 #include "average.h"
 #include "native.h"
 #include "random_frame.h"
+#include "scratch.h"
 #include "reader.h"
 
-static char dir[] = "/tmp/mimas-test-memory-XXXXXX";
 
 static long peak_kb(void)
 {
@@ -104,8 +104,9 @@ static void average_all(const char *path, long *peak_early, long *peak_late)
 static void check_flat(void (*write)(const char *, int), const char *suffix)
 {
 
-    char path[300];
-    snprintf(path, sizeof path, "%s/frames.%s", dir, suffix);
+    char name[32];
+    snprintf(name, sizeof name, "frames.%s", suffix);
+    const char *path = scratch_path(name);
     write(path, 300);
     long early = 0, late = 0;
     average_all(path, &early, &late);
@@ -126,23 +127,11 @@ static void test_dump_stream(void **state)
     check_flat(write_dump, "dump");
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    return mkdtemp(dir) ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    return rmdir(dir);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_native_stream),
         cmocka_unit_test(test_dump_stream),
     };
-    return cmocka_run_group_tests_name("stream_memory", tests, setup, teardown);
+    return cmocka_run_group_tests_name("stream_memory", tests, scratch_setup, scratch_teardown);
 }
