@@ -12,6 +12,7 @@ static const cli_command *const commands[] = {
     &cmd_convert,
     &cmd_average,
     &cmd_voronoi,
+    &cmd_simulate,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 

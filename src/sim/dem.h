@@ -1,0 +1,148 @@
+/* The state of a DEM simulation (mimas simulate): particles, walls, the
+ * contact laws of every type pair and the Verlet neighbour list with the
+ * contact history.  PHYSICS.md sections 2 and 3. */
+#ifndef MIMAS_SIM_DEM_H
+#define MIMAS_SIM_DEM_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "contact_law.h"
+#include "error.h"
+#include "scenario.h"
+
+#define DEM_MAX_WALLS 8
+
+enum { DEM_WALL_PLANE = 0, DEM_WALL_CYLINDER = 1 };
+
+/* A wall.  Moving walls turn about the z axis through (axis[0], axis[1]) at
+ * angular velocity omega; their shape does not change (rotationally
+ * symmetric), only the velocity of their surface. */
+typedef struct dem_wall {
+    int kind;
+    int32_t id;              /* wall id in the output */
+    double point[3];         /* plane: a point on it */
+    double normal[3];        /* plane: unit normal pointing into the domain */
+    double radius;           /* cylinder (axis parallel to z through axis[]) */
+    int outside;             /* cylinder: particles are outside it (an inner wall) */
+    double axis[2];
+    double omega;            /* angular velocity of the surface about the z axis */
+    double moving_from;      /* plane: only the part at r >= moving_from moves (split bottom) */
+} dem_wall;
+
+/* A rigid motion that glued particles follow: rotation about the z axis
+ * through axis[] at omega plus a translation at velocity. */
+typedef struct dem_motion {
+    double omega, axis[2], velocity[3];
+    double angle, shift[3];  /* turned and moved so far */
+} dem_motion;
+#define DEM_MAX_MOTIONS 4
+
+/* Flags of a neighbour-list entry */
+enum { DEM_TOUCH = 1, DEM_BRIDGE = 2 };
+
+/* One pair (i, j) of the Verlet list with its contact history. */
+typedef struct dem_entry {
+    int32_t j;
+    int32_t flags;           /* DEM_TOUCH while overlapping, DEM_BRIDGE while a bridge exists */
+    double xi[3];            /* tangential spring of i relative to j (PHYSICS 2.3) */
+    double bridge_volume;    /* V_B of the bridge (PHYSICS 2.4), 0 without one */
+} dem_entry;
+
+/* What one entry contributes: force on i (on j: minus it), torques on i and j. */
+typedef struct dem_entry_force {
+    double f[3], ti[3], tj[3];
+} dem_entry_force;
+
+typedef struct dem_nlist {
+    size_t n;                /* particles the list was built for */
+    size_t *start;           /* n + 1: entries of i are start[i] .. start[i+1]-1 */
+    dem_entry *e;
+    dem_entry_force *ef;
+    size_t ne, cap;
+    size_t *tstart;          /* transposed: entries where particle j is the second one */
+    size_t *tk;
+    size_t builds;           /* how many times it was built */
+} dem_nlist;
+
+typedef struct dem_system {
+    /* particles (struct of arrays) */
+    size_t n, cap;
+    int64_t *id;
+    int32_t *type;
+    double *radius, *mass, *inertia;   /* inertia = (2/5) m R^2 */
+    double *liquid;                    /* liquid volume V_L carried (PHYSICS 2.4) */
+    double (*x)[3], (*v)[3], (*w)[3], (*f)[3], (*t)[3];
+    double (*x_ref)[3];                /* positions when the list was built */
+    int32_t (*image)[3];
+    int32_t *glued;                    /* -1: free; else the motion it follows */
+    double (*anchor)[3];               /* glued: position at angle 0 and shift 0 */
+    int32_t *bridges;                  /* bridges of each particle, this step */
+    /* walls; wall-contact history and forces, n x nwalls */
+    dem_wall walls[DEM_MAX_WALLS];
+    int nwalls;
+    double (*wall_xi)[3];
+    double (*wall_f)[3];
+    double *wall_delta;
+    /* box: lo/hi, periodic flags (orthogonal) */
+    double lo[3], hi[3];
+    int periodic[3];
+    /* laws by type pair (0 = wall) */
+    dem_law law[SIM_MAX_TYPES][SIM_MAX_TYPES];
+    int bridges_on;
+    double bridge_range;               /* largest rupture distance possible */
+    double coarse_grain;
+    /* integration */
+    double dt, skin, gravity[3];
+    int rotation;
+    int64_t step;
+    dem_motion motions[DEM_MAX_MOTIONS];
+    int nmotions;
+    int glued_interact;                /* glued particles interact with each other */
+    dem_nlist nl;
+} dem_system;
+
+void dem_init(dem_system *s);
+void dem_free(dem_system *s);
+/* Makes room for n particles (arrays zeroed beyond the old size). */
+int dem_reserve(dem_system *s, size_t n, mimas_error *err);
+/* Adds a free particle of type, radius, density at x (returns its index). */
+size_t dem_add_particle(dem_system *s, int32_t type, double radius, double density,
+                        const double x[3]);
+int dem_add_wall(dem_system *s, const dem_wall *w, mimas_error *err);
+/* Sets laws, dt, skin, gravity, rotation, liquid from the scenario. */
+int dem_configure(dem_system *s, const sim_scenario *sc, mimas_error *err);
+
+/* Neighbour list (neighbour.c): rebuild when needed; returns 1 if rebuilt. */
+int dem_neighbours_update(dem_system *s, mimas_error *err);
+int dem_neighbours_build(dem_system *s, mimas_error *err);
+/* Rebuilds the transposed index of the list (after the entries were restored). */
+int dem_neighbours_transpose(dem_nlist *nl, mimas_error *err);
+
+/* Forces (forces.c): contact, wall and body forces into f and t. */
+void dem_forces(dem_system *s);
+
+/* Wall geometry (forces.c): overlap of a sphere at x with the wall, the unit
+ * normal from the wall to the particle and the contact point on the wall. */
+double dem_wall_geometry(const dem_wall *w, const double x[3], double radius, double n[3],
+                         double c[3]);
+/* Velocity of the wall surface at point c. */
+void dem_wall_velocity(const dem_wall *w, const double c[3], double v[3]);
+
+/* One velocity-Verlet step (integrate.c). */
+int dem_step(dem_system *s, mimas_error *err);
+
+/* Minimum-image separation x_i - x_j. */
+static inline void dem_separation(const dem_system *s, const double *xi, const double *xj,
+                                  double d[3])
+{
+    for (int k = 0; k < 3; k++) {
+        d[k] = xi[k] - xj[k];
+        if (s->periodic[k]) {
+            double L = s->hi[k] - s->lo[k];
+            d[k] -= L * __builtin_nearbyint(d[k] / L);
+        }
+    }
+}
+
+#endif

@@ -1,0 +1,344 @@
+/* Linked cells and Verlet lists (PHYSICS.md 3): particles are sorted by cell,
+ * each pair is found once through a half shell of 13 neighbour cells, the
+ * list holds every pair closer than R_i + R_j + skin (+ the longest liquid
+ * bridge) and is rebuilt when a particle has moved more than skin/2.  The
+ * contact history travels from the old list to the new one.  Building is
+ * deterministic for given positions and particle order, so results do not
+ * depend on the thread count. */
+#include <config.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dem.h"
+
+typedef struct cell_grid {
+    int n[3];
+    double lo[3], edge[3];
+    size_t *start;            /* ncells + 1, into the sorted particle order */
+    size_t *cell;             /* per particle (sorted order) */
+} cell_grid;
+
+/* the 13 cells of the half shell: (dz > 0) or (dz == 0 and dy > 0) or (dz == dy == 0, dx > 0) */
+static const int half_shell[13][3] = {
+    {1, 0, 0},   {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},  {-1, -1, 1}, {0, -1, 1}, {1, -1, 1},
+    {-1, 0, 1},  {0, 0, 1},  {1, 0, 1},  {-1, 1, 1}, {0, 1, 1},   {1, 1, 1}};
+
+static void wrap_periodic(dem_system *s)
+{
+    for (int d = 0; d < 3; d++) {
+        if (!s->periodic[d])
+            continue;
+        double L = s->hi[d] - s->lo[d];
+        for (size_t k = 0; k < s->n; k++) {
+            double q = floor((s->x[k][d] - s->lo[d]) / L);
+            if (q != 0) {
+                s->x[k][d] -= q * L;
+                if (s->x[k][d] >= s->hi[d])   /* rounding */
+                    s->x[k][d] = s->lo[d];
+                s->image[k][d] += (int32_t)q;
+                if (s->glued[k] >= 0)
+                    s->anchor[k][d] -= q * L;
+            }
+        }
+    }
+}
+
+static int make_grid(const dem_system *s, double cutoff, cell_grid *g, mimas_error *err)
+{
+    double lo[3], hi[3];
+    for (int d = 0; d < 3; d++) {
+        if (s->periodic[d]) {
+            lo[d] = s->lo[d];
+            hi[d] = s->hi[d];
+        } else {
+            lo[d] = INFINITY;
+            hi[d] = -INFINITY;
+            for (size_t k = 0; k < s->n; k++) {
+                if (s->x[k][d] < lo[d])
+                    lo[d] = s->x[k][d];
+                if (s->x[k][d] > hi[d])
+                    hi[d] = s->x[k][d];
+            }
+            if (!isfinite(lo[d]) || !isfinite(hi[d]))
+                return mimas_error_set(err, MIMAS_EDATA, "a particle position is not finite "
+                                       "(the simulation blew up; lower dt)");
+        }
+    }
+    double edge = cutoff;
+    for (;;) {
+        double total = 1;
+        for (int d = 0; d < 3; d++) {
+            double ext = hi[d] - lo[d];
+            g->n[d] = ext > edge ? (int)fmin(floor(ext / edge), 1 << 20) : 1;
+            g->lo[d] = lo[d];
+            g->edge[d] = ext > 0 ? ext / g->n[d] : 1;
+            if (s->periodic[d] && g->n[d] < 3)
+                return mimas_error_set(err, MIMAS_EDATA, "the periodic box is too small: "
+                                       "it must be at least 3 x (largest diameter + skin) "
+                                       "= %g m wide", 3 * cutoff);
+            total *= g->n[d];
+        }
+        /* at most a few cells per particle (a particle far away would make the
+         * grid of the bounding box huge) */
+        if (total <= 4.0 * (double)s->n + 64)
+            break;
+        edge *= 1.26;
+    }
+    return MIMAS_OK;
+}
+
+static size_t cell_of(const cell_grid *g, const double *x)
+{
+    int c[3];
+    for (int d = 0; d < 3; d++) {
+        double q = floor((x[d] - g->lo[d]) / g->edge[d]);
+        c[d] = q < 0 ? 0 : q >= g->n[d] ? g->n[d] - 1 : (int)q;
+    }
+    return ((size_t)c[2] * (size_t)g->n[1] + (size_t)c[1]) * (size_t)g->n[0] + (size_t)c[0];
+}
+
+static void permute(void *arr, size_t elem, const size_t *old_of, size_t n, void *tmp)
+{
+    char *a = arr, *t = tmp;
+    for (size_t k = 0; k < n; k++)
+        memcpy(t + k * elem, a + old_of[k] * elem, elem);
+    memcpy(a, t, n * elem);
+}
+
+/* Sorts the particles by cell (stable), so neighbours are close in memory. */
+static int sort_by_cell(dem_system *s, cell_grid *g, size_t *old_of, mimas_error *err)
+{
+    size_t ncells = (size_t)g->n[0] * (size_t)g->n[1] * (size_t)g->n[2], n = s->n;
+    g->start = calloc(ncells + 1, sizeof *g->start);
+    g->cell = malloc((n ? n : 1) * sizeof *g->cell);
+    size_t *c = malloc((n ? n : 1) * sizeof *c);
+    void *tmp = malloc((n ? n : 1) * sizeof(double) * 3 * DEM_MAX_WALLS);
+    if (!g->start || !g->cell || !c || !tmp) {
+        free(c);
+        free(tmp);
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the neighbour cells");
+    }
+    for (size_t k = 0; k < n; k++) {
+        c[k] = cell_of(g, s->x[k]);
+        g->start[c[k] + 1]++;
+    }
+    for (size_t q = 0; q < ncells; q++)
+        g->start[q + 1] += g->start[q];
+    {
+        size_t *cursor = malloc((ncells ? ncells : 1) * sizeof *cursor);
+        if (!cursor) {
+            free(c);
+            free(tmp);
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the neighbour cells");
+        }
+        memcpy(cursor, g->start, ncells * sizeof *cursor);
+        for (size_t k = 0; k < n; k++)
+            old_of[cursor[c[k]]++] = k;
+        free(cursor);
+    }
+    for (size_t k = 0; k < n; k++)
+        g->cell[k] = c[old_of[k]];
+#define PERMUTE(a) permute(s->a, sizeof *s->a, old_of, n, tmp);
+    PERMUTE(id) PERMUTE(type) PERMUTE(radius) PERMUTE(mass) PERMUTE(inertia) PERMUTE(liquid)
+    PERMUTE(x) PERMUTE(v) PERMUTE(w) PERMUTE(f) PERMUTE(t) PERMUTE(image) PERMUTE(glued)
+    PERMUTE(anchor) PERMUTE(bridges)
+#undef PERMUTE
+    permute(s->wall_xi, sizeof *s->wall_xi * DEM_MAX_WALLS, old_of, n, tmp);
+    permute(s->wall_f, sizeof *s->wall_f * DEM_MAX_WALLS, old_of, n, tmp);
+    permute(s->wall_delta, sizeof *s->wall_delta * DEM_MAX_WALLS, old_of, n, tmp);
+    free(c);
+    free(tmp);
+    return MIMAS_OK;
+}
+
+/* The history of pair (oi, oj) (old indices) in the old list, oriented as i
+ * relative to j; a zero entry if the pair was not listed. */
+static dem_entry old_history(const size_t *ostart, const dem_entry *oe, size_t oi, size_t oj)
+{
+    dem_entry h = {0};
+    if (!ostart)
+        return h;
+    for (size_t k = ostart[oi]; k < ostart[oi + 1]; k++)
+        if ((size_t)oe[k].j == oj)
+            return oe[k];
+    for (size_t k = ostart[oj]; k < ostart[oj + 1]; k++)
+        if ((size_t)oe[k].j == oi) {
+            h = oe[k];
+            for (int d = 0; d < 3; d++)
+                h.xi[d] = -h.xi[d];
+            return h;
+        }
+    return h;
+}
+
+typedef struct build_ctx {
+    const dem_system *s;
+    const cell_grid *g;
+    double extra;             /* skin + bridge range */
+    const size_t *ostart, *old_of;
+    const dem_entry *oe;
+} build_ctx;
+
+static int pair_listed(const build_ctx *b, size_t i, size_t j)
+{
+    const dem_system *s = b->s;
+    if (s->glued[i] >= 0 && s->glued[j] >= 0 && !s->glued_interact)
+        return 0;   /* two wall particles never interact */
+    double d[3];
+    dem_separation(s, s->x[i], s->x[j], d);
+    double cut = s->radius[i] + s->radius[j] + b->extra;
+    return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut;
+}
+
+/* Visits the partners of i: counts them (out == NULL) or writes the entries. */
+static size_t visit(const build_ctx *b, size_t i, dem_entry *out)
+{
+    const cell_grid *g = b->g;
+    size_t c = g->cell[i], found = 0;
+    int ci[3] = {(int)(c % (size_t)g->n[0]), (int)(c / (size_t)g->n[0] % (size_t)g->n[1]),
+                 (int)(c / ((size_t)g->n[0] * (size_t)g->n[1]))};
+    for (int h = -1; h < 13; h++) {
+        int q[3];
+        int skip = 0;
+        for (int d = 0; d < 3; d++) {
+            q[d] = ci[d] + (h < 0 ? 0 : half_shell[h][d]);
+            if (q[d] < 0 || q[d] >= g->n[d]) {
+                if (!b->s->periodic[d])
+                    skip = 1;
+                q[d] = (q[d] + g->n[d]) % g->n[d];
+            }
+        }
+        if (skip)
+            continue;
+        size_t cc = ((size_t)q[2] * (size_t)g->n[1] + (size_t)q[1]) * (size_t)g->n[0] + (size_t)q[0];
+        size_t j0 = h < 0 ? i + 1 : g->start[cc];
+        for (size_t j = j0; j < g->start[cc + 1]; j++) {
+            if (!pair_listed(b, i, j))
+                continue;
+            if (out) {
+                dem_entry e = old_history(b->ostart, b->oe, b->old_of[i], b->old_of[j]);
+                e.j = (int32_t)j;
+                out[found] = e;
+            }
+            found++;
+        }
+    }
+    return found;
+}
+
+int dem_neighbours_build(dem_system *s, mimas_error *err)
+{
+    dem_nlist *nl = &s->nl;
+    size_t n = s->n;
+    double dmax = 0;
+    for (size_t k = 0; k < n; k++)
+        if (2 * s->radius[k] > dmax)
+            dmax = 2 * s->radius[k];
+    double extra = s->skin + (s->bridges_on ? s->bridge_range : 0);
+    wrap_periodic(s);
+    cell_grid g = {0};
+    size_t *old_of = malloc((n ? n : 1) * sizeof *old_of);
+    size_t *start = malloc((n + 1) * sizeof *start);
+    if (!old_of || !start) {
+        free(old_of);
+        free(start);
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the neighbour list");
+    }
+    int rc = make_grid(s, dmax + extra, &g, err);
+    if (!rc)
+        rc = sort_by_cell(s, &g, old_of, err);
+    if (rc) {
+        free(old_of);
+        free(start);
+        free(g.start);
+        free(g.cell);
+        return rc;
+    }
+    /* old list (in old indices) stays until the history has moved over */
+    build_ctx b = {s, &g, extra, nl->n == n ? nl->start : NULL, old_of, nl->e};
+    start[0] = 0;
+#pragma omp parallel for schedule(dynamic, 256)
+    for (size_t i = 0; i < n; i++)
+        start[i + 1] = visit(&b, i, NULL);
+    for (size_t i = 0; i < n; i++)
+        start[i + 1] += start[i];
+    size_t ne = start[n];
+    dem_entry *e = malloc((ne ? ne : 1) * sizeof *e);
+    dem_entry_force *ef = calloc(ne ? ne : 1, sizeof *ef);
+    if (!e || !ef) {
+        free(e);
+        free(ef);
+        free(old_of);
+        free(start);
+        free(g.start);
+        free(g.cell);
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for %zu neighbour pairs", ne);
+    }
+#pragma omp parallel for schedule(dynamic, 256)
+    for (size_t i = 0; i < n; i++)
+        visit(&b, i, e + start[i]);
+    free(nl->start);
+    free(nl->e);
+    free(nl->ef);
+    nl->n = n;
+    nl->start = start;
+    nl->e = e;
+    nl->ef = ef;
+    nl->ne = ne;
+    nl->builds++;
+    free(old_of);
+    free(g.start);
+    free(g.cell);
+    memcpy(s->x_ref, s->x, n * sizeof *s->x);
+    return dem_neighbours_transpose(nl, err);
+}
+
+/* The transposed index: entries in which a particle is the second one, in
+ * entry order (a fixed summation order when forces are gathered). */
+int dem_neighbours_transpose(dem_nlist *nl, mimas_error *err)
+{
+    size_t n = nl->n, ne = nl->ne;
+    size_t *tstart = calloc(n + 1, sizeof *tstart), *tk = malloc((ne ? ne : 1) * sizeof *tk);
+    size_t *cur = malloc((n ? n : 1) * sizeof *cur);
+    if (!tstart || !tk || !cur) {
+        free(tstart);
+        free(tk);
+        free(cur);
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the neighbour list");
+    }
+    const dem_entry *e = nl->e;
+    for (size_t k = 0; k < ne; k++)
+        tstart[e[k].j + 1]++;
+    for (size_t i = 0; i < n; i++)
+        tstart[i + 1] += tstart[i];
+    memcpy(cur, tstart, n * sizeof *cur);
+    for (size_t k = 0; k < ne; k++)
+        tk[cur[e[k].j]++] = k;
+    free(cur);
+    free(nl->tstart);
+    free(nl->tk);
+    nl->tstart = tstart;
+    nl->tk = tk;
+    return MIMAS_OK;
+}
+int dem_neighbours_update(dem_system *s, mimas_error *err)
+{
+    if (s->nl.n != s->n || !s->nl.start)
+        return dem_neighbours_build(s, err) ? -1 : 1;
+    double limit = 0.25 * s->skin * s->skin, worst = 0;
+#pragma omp parallel for reduction(max : worst)
+    for (size_t k = 0; k < s->n; k++) {
+        double d2 = 0;
+        for (int d = 0; d < 3; d++) {
+            double q = s->x[k][d] - s->x_ref[k][d];
+            d2 += q * q;
+        }
+        if (d2 > worst)
+            worst = d2;
+    }
+    if (worst <= limit)
+        return 0;
+    return dem_neighbours_build(s, err) ? -1 : 1;
+}

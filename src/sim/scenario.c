@@ -1,0 +1,537 @@
+/* Scenario files (INI, parsed with libinih): one table of keys drives
+ * parsing, range checks, --print-defaults and the documentation. */
+#include <config.h>
+
+#include "scenario.h"
+
+#include <ini.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+enum { K_REAL, K_INT, K_BOOL, K_CHOICE };
+/* which scenario types a key applies to */
+enum { S_RING = 1 << SIM_RINGSHEAR, S_BOX = 1 << SIM_BOX, S_PULL = 1 << SIM_PULLOFF,
+       S_ALL = S_RING | S_BOX | S_PULL };
+/* range flags */
+enum { R_MIN_OPEN = 1, R_NO_MAX = 2 };
+
+typedef struct key_desc {
+    const char *section, *name;
+    int kind;
+    size_t offset;            /* in sim_scenario, or in sim_contact_params for [contact] */
+    double min, max;
+    int range;
+    const char *choices;      /* K_CHOICE: "a|b|c", value = index */
+    const char *unit, *meaning;
+    int scenarios;
+} key_desc;
+
+#define SC(f) offsetof(sim_scenario, f)
+#define CP(f) offsetof(sim_contact_params, f)
+#define BIG 0, R_NO_MAX
+
+static const key_desc keys[] = {
+    {"scenario", "type", K_CHOICE, SC(type), 0, 0, 0, "ringshear|box|pulloff", "",
+     "the scenario: split-bottom ring shear cell, periodic box, liquid-bridge pull-off", S_ALL},
+    {"scenario", "seed", K_INT, SC(seed), 0, 2147483647.0, 0, NULL, "",
+     "seed of the random numbers (sizes, insertion, velocities)", S_ALL},
+    {"run", "dt", K_REAL, SC(dt), 0, BIG | R_MIN_OPEN, NULL, "s", "time step", S_ALL},
+    {"run", "dt_guard", K_BOOL, SC(dt_guard), 0, 1, 0, NULL, "",
+     "refuse dt > t_c/50 of the stiffest linear pair (PHYSICS 3)", S_ALL},
+    {"run", "skin", K_REAL, SC(skin), 0, BIG | R_MIN_OPEN, NULL, "m",
+     "Verlet-list skin; lists are rebuilt when a particle moved more than skin/2", S_ALL},
+    {"run", "gravity_x", K_REAL, SC(gravity[0]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, x", S_ALL},
+    {"run", "gravity_y", K_REAL, SC(gravity[1]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, y", S_ALL},
+    {"run", "gravity_z", K_REAL, SC(gravity[2]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, z", S_ALL},
+    {"run", "output_every", K_INT, SC(output_every), 1, 1e15, 0, NULL, "steps",
+     "write a frame (particles, contacts, wall contacts) every this many steps", S_ALL},
+    {"run", "checkpoint_every", K_INT, SC(checkpoint_every), 0, 1e15, 0, NULL, "steps",
+     "write the checkpoint for --resume every this many steps (0: with every frame)", S_ALL},
+    {"run", "output_settle", K_BOOL, SC(output_settle), 0, 1, 0, NULL, "",
+     "also write frames while the packing settles (ringshear)", S_RING},
+    {"particles", "diameter", K_REAL, SC(diameter), 0, BIG | R_MIN_OPEN, NULL, "m",
+     "mean particle diameter d (before coarse graining)", S_ALL},
+    {"particles", "diameter_spread", K_REAL, SC(diameter_spread), 0, 0.5, 0, NULL, "",
+     "diameters uniform in d (1 +- spread)", S_RING | S_BOX},
+    {"particles", "density", K_REAL, SC(density), 0, BIG | R_MIN_OPEN, NULL, "kg m-3",
+     "particle material density", S_ALL},
+    {"particles", "liquid_content", K_REAL, SC(liquid_content), 0, 0.5, 0, NULL, "",
+     "liquid mass per particle mass D; > 0 switches liquid bridges on (PHYSICS 2.4)", S_ALL},
+    {"particles", "liquid_density", K_REAL, SC(liquid_density), 0, BIG | R_MIN_OPEN, NULL,
+     "kg m-3", "density of the liquid", S_ALL},
+    {"particles", "coarse_grain", K_REAL, SC(coarse_grain), 1, 1000, 0, NULL, "",
+     "coarse-grain factor alpha: radii x alpha, parameters scaled (PHYSICS 2.5)", S_ALL},
+    {"particles", "rotation", K_BOOL, SC(rotation), 0, 1, 0, NULL, "",
+     "integrate the rotation of the particles (no: angular velocities stay 0)", S_ALL},
+    {"contact", "model", K_CHOICE, CP(model), 0, 0, 0, "linear|hertz", "",
+     "normal and tangential law: linear spring-dashpot or Hertz-Mindlin (PHYSICS 2.1, 2.2)", S_ALL},
+    {"contact", "stiffness_normal", K_REAL, CP(k_n), 0, BIG, NULL, "N m-1", "k_n (linear)", S_ALL},
+    {"contact", "stiffness_tangential", K_REAL, CP(k_t), 0, BIG, NULL, "N m-1",
+     "k_t of the tangential history spring (linear)", S_ALL},
+    {"contact", "damping_normal", K_REAL, CP(gamma_n), 0, BIG, NULL, "N s m-1",
+     "gamma_n (linear; ignored when restitution > 0)", S_ALL},
+    {"contact", "damping_tangential", K_REAL, CP(gamma_t), 0, BIG, NULL, "N s m-1",
+     "gamma_t (linear)", S_ALL},
+    {"contact", "restitution", K_REAL, CP(restitution), 0, 1, 0, NULL, "",
+     "coefficient of restitution e; 0: use damping_normal (linear); Hertz needs e > 0", S_ALL},
+    {"contact", "normal_clip", K_BOOL, CP(normal_clip), 0, 1, 0, NULL, "",
+     "the normal force is never attractive: max(0, k delta - gamma v_n) (PHYSICS 2.1); with "
+     "it, restitution is reached at the end of the repulsion (004 eq. 3.13-3.14)", S_ALL},
+    {"contact", "youngs_modulus", K_REAL, CP(youngs_modulus), 0, BIG, NULL, "Pa",
+     "E (Hertz, JKR)", S_ALL},
+    {"contact", "poisson", K_REAL, CP(poisson), 0, 0.5, 0, NULL, "", "Poisson ratio nu", S_ALL},
+    {"contact", "friction", K_REAL, CP(friction), 0, BIG, NULL, "", "Coulomb friction mu", S_ALL},
+    {"contact", "rolling_friction", K_REAL, CP(rolling_friction), 0, BIG, NULL, "m",
+     "rolling friction length mu_r (PHYSICS 2.3)", S_ALL},
+    {"contact", "cohesion_energy", K_REAL, CP(cohesion_energy), 0, BIG, NULL, "J m-2",
+     "JKR-type surface energy w (PHYSICS 2.4); needs youngs_modulus", S_ALL},
+    {"contact", "surface_tension", K_REAL, CP(surface_tension), 0, BIG, NULL, "N m-1",
+     "surface tension of the liquid bridges", S_ALL},
+    {"contact", "contact_angle", K_REAL, CP(contact_angle), 0, 90, 0, NULL, "deg",
+     "contact angle theta of the liquid bridges", S_ALL},
+    {"ringshear", "r_in", K_REAL, SC(r_in), 0, BIG | R_MIN_OPEN, NULL, "m",
+     "radius of the inner (static) cylinder", S_RING},
+    {"ringshear", "r_split", K_REAL, SC(r_split), 0, BIG | R_MIN_OPEN, NULL, "m",
+     "split radius: the bottom rotates outside it", S_RING},
+    {"ringshear", "r_out", K_REAL, SC(r_out), 0, BIG | R_MIN_OPEN, NULL, "m",
+     "radius of the outer cylinder (rotates with the outer bottom)", S_RING},
+    {"ringshear", "fill_height", K_REAL, SC(fill_height), 0, BIG | R_MIN_OPEN, NULL, "m",
+     "fill height H; the particle count follows from it at solid fraction 0.6", S_RING},
+    {"ringshear", "count", K_INT, SC(count), 0, 1e9, 0, NULL, "",
+     "number of particles (0: from fill_height)", S_RING},
+    {"ringshear", "omega", K_REAL, SC(omega), -1e6, 1e6, 0, NULL, "rad s-1",
+     "angular velocity Omega of the outer bottom and the outer cylinder", S_RING},
+    {"ringshear", "rough_bottom", K_BOOL, SC(rough_bottom), 0, 1, 0, NULL, "",
+     "glue a layer of particles (type 2) onto the bottom", S_RING},
+    {"ringshear", "settle_time", K_REAL, SC(settle_time), 0, BIG, NULL, "s",
+     "time the inserted particles settle before the bottom turns", S_RING},
+    {"ringshear", "shear_time", K_REAL, SC(shear_time), 0, BIG, NULL, "s",
+     "simulated time of shearing", S_RING},
+    {"box", "size_x", K_REAL, SC(box_size[0]), 0, BIG | R_MIN_OPEN, NULL, "m", "box edge x", S_BOX},
+    {"box", "size_y", K_REAL, SC(box_size[1]), 0, BIG | R_MIN_OPEN, NULL, "m", "box edge y", S_BOX},
+    {"box", "size_z", K_REAL, SC(box_size[2]), 0, BIG | R_MIN_OPEN, NULL, "m", "box edge z", S_BOX},
+    {"box", "periodic_x", K_BOOL, SC(box_periodic[0]), 0, 1, 0, NULL, "",
+     "periodic in x (else plane walls)", S_BOX},
+    {"box", "periodic_y", K_BOOL, SC(box_periodic[1]), 0, 1, 0, NULL, "",
+     "periodic in y (else plane walls)", S_BOX},
+    {"box", "periodic_z", K_BOOL, SC(box_periodic[2]), 0, 1, 0, NULL, "",
+     "periodic in z (else plane walls)", S_BOX},
+    {"box", "count", K_INT, SC(box_count), 1, 1e9, 0, NULL, "", "number of particles", S_BOX},
+    {"box", "speed", K_REAL, SC(box_speed), 0, BIG, NULL, "m s-1",
+     "initial speeds: random directions, magnitudes uniform in [0, speed]", S_BOX},
+    {"box", "time", K_REAL, SC(box_time), 0, BIG, NULL, "s", "simulated time", S_BOX},
+    {"pulloff", "speed", K_REAL, SC(pull_speed), 0, BIG | R_MIN_OPEN, NULL, "m s-1",
+     "separation speed of the two particles", S_PULL},
+    {"pulloff", "distance", K_REAL, SC(pull_distance), 0, BIG | R_MIN_OPEN, NULL, "",
+     "final gap in units of the particle radius", S_PULL},
+};
+#define NKEYS (sizeof keys / sizeof keys[0])
+
+static const char *const type_names[] = {"ringshear", "box", "pulloff"};
+
+int sim_scenario_type(const char *name)
+{
+    for (int k = 0; k < 3; k++)
+        if (strcmp(name, type_names[k]) == 0)
+            return k;
+    return -1;
+}
+
+static void contact_defaults(sim_contact_params *c)
+{
+    /* the ring shear cell of 000 (PHYSICS 7, 000 Table 4.2) */
+    *c = (sim_contact_params){.model = SIM_LINEAR, .k_n = 110, .k_t = 12, .gamma_n = 2e-3,
+                              .gamma_t = 0.5e-3, .restitution = 0, .normal_clip = 1,
+                              .youngs_modulus = 0,
+                              .poisson = 0.3, .friction = 0.01, .rolling_friction = 0,
+                              .cohesion_energy = 0, .surface_tension = 0.072,
+                              .contact_angle = 0};
+}
+
+void sim_scenario_defaults(sim_scenario *s, int type)
+{
+    memset(s, 0, sizeof *s);
+    s->type = type;
+    s->seed = 1;
+    s->dt = 5e-6;
+    s->dt_guard = 1;
+    s->skin = 2e-4;
+    s->gravity[2] = type == SIM_RINGSHEAR ? -9.81 : 0;
+    s->output_every = type == SIM_PULLOFF ? 20 : 20000;
+    s->diameter = 0.002;
+    s->diameter_spread = type == SIM_RINGSHEAR ? 0.1 : 0;
+    s->density = 2000;
+    s->liquid_density = 1000;
+    s->liquid_content = type == SIM_PULLOFF ? 0.01 : 0;
+    s->coarse_grain = 1;
+    s->rotation = 1;
+    for (int a = 0; a < SIM_MAX_TYPES; a++)
+        for (int b = 0; b < SIM_MAX_TYPES; b++)
+            contact_defaults(&s->contact[a][b]);
+    /* the split-bottom cell of 000 (PHYSICS 7) */
+    s->r_in = 0.0147;
+    s->r_split = 0.085;
+    s->r_out = 0.11;
+    s->fill_height = 0.038;
+    s->omega = 2 * M_PI * 0.01;
+    s->rough_bottom = 1;
+    s->settle_time = 0.5;
+    s->shear_time = 10;
+    for (int d = 0; d < 3; d++) {
+        s->box_size[d] = 0.02;
+        s->box_periodic[d] = 1;
+    }
+    s->box_count = 100;
+    s->box_speed = 0.1;
+    s->box_time = 0.1;
+    s->pull_speed = 1e-3;
+    s->pull_distance = 0.5;
+}
+
+/* ---- parsing ------------------------------------------------------------- */
+
+typedef struct override {
+    int a, b;
+    const key_desc *key;
+    double value;
+} override;
+
+typedef struct parse_ctx {
+    sim_scenario *s;
+    sim_contact_params all;     /* [contact] */
+    override *ov;
+    size_t nov;
+    int only_type;              /* first pass: look for [scenario] type only */
+    int found_type;
+    char msg[MIMAS_ERROR_MSG_MAX - 64];
+    int failed;
+} parse_ctx;
+
+static int fail(parse_ctx *c, const char *fmt, const char *a, const char *b, const char *d)
+{
+    if (!c->failed)
+        snprintf(c->msg, sizeof c->msg, fmt, a, b, d);
+    c->failed = 1;
+    return 0;
+}
+
+/* "contact", "contact 1-2", "contact wall-1": *a, *b types (-1: all) */
+static int contact_section(const char *section, int *a, int *b)
+{
+    if (strcmp(section, "contact") == 0) {
+        *a = *b = -1;
+        return 1;
+    }
+    if (strncmp(section, "contact ", 8) != 0)
+        return 0;
+    char x[16], y[16], extra;
+    if (sscanf(section + 8, "%15[^-]-%15s%c", x, y, &extra) != 2)
+        return -1;
+    const char *t[2] = {x, y};
+    int v[2];
+    for (int k = 0; k < 2; k++) {
+        char *end;
+        long n = strcmp(t[k], "wall") == 0 ? 0 : strtol(t[k], &end, 10);
+        if (strcmp(t[k], "wall") != 0 && (*end || end == t[k] || n < 1 || n >= SIM_MAX_TYPES))
+            return -1;
+        v[k] = (int)n;
+    }
+    *a = v[0];
+    *b = v[1];
+    return 1;
+}
+
+static int parse_value(const key_desc *k, const char *text, double *out)
+{
+    char *end;
+    if (k->kind == K_BOOL) {
+        if (!strcasecmp(text, "yes") || !strcasecmp(text, "true") || !strcmp(text, "1"))
+            *out = 1;
+        else if (!strcasecmp(text, "no") || !strcasecmp(text, "false") || !strcmp(text, "0"))
+            *out = 0;
+        else
+            return -1;
+        return 0;
+    }
+    if (k->kind == K_CHOICE) {
+        const char *p = k->choices;
+        for (int idx = 0; p && *p; idx++) {
+            size_t len = strcspn(p, "|");
+            if (strlen(text) == len && strncmp(p, text, len) == 0) {
+                *out = idx;
+                return 0;
+            }
+            p += len + (p[len] == '|');
+        }
+        return -1;
+    }
+    double v = strtod(text, &end);
+    if (end == text || *end || !isfinite(v))
+        return -1;
+    if (k->kind == K_INT && v != floor(v))
+        return -1;
+    *out = v;
+    return 0;
+}
+
+static int in_range(const key_desc *k, double v)
+{
+    if (k->kind != K_REAL && k->kind != K_INT)
+        return 1;
+    if ((k->range & R_MIN_OPEN) ? v <= k->min : v < k->min)
+        return 0;
+    return (k->range & R_NO_MAX) || v <= k->max;
+}
+
+static void store(void *base, const key_desc *k, double v)
+{
+    char *p = (char *)base + k->offset;
+    if (k->kind == K_REAL)
+        *(double *)p = v;
+    else if (k->kind == K_INT)
+        *(long *)p = (long)v;
+    else
+        *(int *)p = (int)v;
+}
+
+static double load(const void *base, const key_desc *k)
+{
+    const char *p = (const char *)base + k->offset;
+    if (k->kind == K_REAL)
+        return *(const double *)p;
+    if (k->kind == K_INT)
+        return (double)*(const long *)p;
+    return *(const int *)p;
+}
+
+static int handler(void *user, const char *section, const char *name, const char *value)
+{
+    parse_ctx *c = user;
+    if (c->only_type) {
+        if (strcmp(section, "scenario") == 0 && strcmp(name, "type") == 0) {
+            int t = sim_scenario_type(value);
+            if (t < 0)
+                return fail(c, "[scenario] type must be ringshear, box or pulloff, not '%s'%s%s",
+                            value, "", "");
+            c->found_type = t;
+        }
+        return 1;
+    }
+    int a = -1, b = -1, cs = contact_section(section, &a, &b);
+    if (cs < 0)
+        return fail(c, "bad section [%s]: use [contact], [contact A-B] or [contact wall-B] "
+                       "with types 1..3%s%s", section, "", "");
+    const char *sec = cs ? "contact" : section;
+    const key_desc *k = NULL;
+    int section_known = 0;
+    for (size_t m = 0; m < NKEYS; m++) {
+        if (strcmp(keys[m].section, sec) != 0)
+            continue;
+        section_known = 1;
+        if (strcmp(keys[m].name, name) == 0)
+            k = &keys[m];
+    }
+    if (!section_known)
+        return fail(c, "unknown section [%s]%s%s", section, "", "");
+    if (!k)
+        return fail(c, "unknown key '%s' in [%s]%s", name, section, "");
+    if (!(k->scenarios & (1 << c->s->type)))
+        return fail(c, "key '%s' of [%s] does not apply to scenario %s", name, section,
+                    type_names[c->s->type]);
+    double v;
+    if (parse_value(k, value, &v)) {
+        if (k->kind == K_CHOICE)
+            return fail(c, "%s must be one of %s, not '%s'", name, k->choices, value);
+        return fail(c, "%s: '%s' is not a %s", name, value,
+                    k->kind == K_BOOL ? "yes/no value" : k->kind == K_INT ? "whole number"
+                                                                          : "number");
+    }
+    if (!in_range(k, v)) {
+        char range[128];
+        if (k->range & R_NO_MAX)
+            snprintf(range, sizeof range, "%s %g", (k->range & R_MIN_OPEN) ? ">" : ">=", k->min);
+        else
+            snprintf(range, sizeof range, "in [%g, %g]", k->min, k->max);
+        return fail(c, "%s = %s is out of range (must be %s)", name, value, range);
+    }
+    if (!cs) {
+        store(c->s, k, v);
+    } else if (a < 0) {
+        store(&c->all, k, v);
+    } else {
+        override *grown = realloc(c->ov, (c->nov + 1) * sizeof *grown);
+        if (!grown)
+            return fail(c, "out of memory%s%s%s", "", "", "");
+        c->ov = grown;
+        c->ov[c->nov++] = (override){a, b, k, v};
+    }
+    return 1;
+}
+
+typedef struct string_reader {
+    const char *p;
+} string_reader;
+
+static char *read_line(char *buf, int size, void *stream)
+{
+    string_reader *r = stream;
+    if (!*r->p)
+        return NULL;
+    int n = 0;
+    while (n < size - 1 && r->p[0]) {
+        char ch = *r->p++;
+        buf[n++] = ch;
+        if (ch == '\n')
+            break;
+    }
+    buf[n] = 0;
+    return buf;
+}
+
+static int run_parse(parse_ctx *c, const char *path, const char *text)
+{
+    if (text) {
+        string_reader r = {text};
+        return ini_parse_stream(read_line, &r, handler, c);
+    }
+    return ini_parse(path, handler, c);
+}
+
+static int load_any(sim_scenario *s, const char *path, const char *text, const char *name,
+                    mimas_error *err)
+{
+    parse_ctx c = {.s = s, .only_type = 1, .found_type = SIM_RINGSHEAR};
+    int line = run_parse(&c, path, text);
+    if (line < 0)
+        return mimas_error_set(err, MIMAS_EIO, "%s: cannot read the scenario file", name);
+    if (line == 0) {
+        /* second pass: the defaults of the scenario type, then the file */
+        sim_scenario_defaults(s, c.found_type);
+        c.only_type = 0;
+        c.all = s->contact[1][1];
+        line = run_parse(&c, path, text);
+    }
+    if (line > 0) {
+        free(c.ov);
+        if (!c.failed)
+            snprintf(c.msg, sizeof c.msg, "syntax error (expected [section] or key = value)");
+        return mimas_error_set(err, MIMAS_EDATA, "%s:%d: %s", name, line, c.msg);
+    }
+    for (int a = 0; a < SIM_MAX_TYPES; a++)
+        for (int b = 0; b < SIM_MAX_TYPES; b++)
+            s->contact[a][b] = c.all;
+    for (size_t m = 0; m < c.nov; m++) {
+        store(&s->contact[c.ov[m].a][c.ov[m].b], c.ov[m].key, c.ov[m].value);
+        store(&s->contact[c.ov[m].b][c.ov[m].a], c.ov[m].key, c.ov[m].value);
+    }
+    free(c.ov);
+    return sim_scenario_check(s, name, err);
+}
+
+int sim_scenario_load(sim_scenario *s, const char *path, mimas_error *err)
+{
+    return load_any(s, path, NULL, path, err);
+}
+
+int sim_scenario_load_string(sim_scenario *s, const char *text, const char *name,
+                             mimas_error *err)
+{
+    return load_any(s, NULL, text, name, err);
+}
+
+int sim_scenario_check(const sim_scenario *s, const char *name, mimas_error *err)
+{
+    if (s->type == SIM_RINGSHEAR) {
+        if (!(s->r_in < s->r_split && s->r_split < s->r_out))
+            return mimas_error_set(err, MIMAS_EDATA, "%s: [ringshear] needs r_in < r_split < "
+                                   "r_out", name);
+        double dmax = s->diameter * s->coarse_grain * (1 + s->diameter_spread);
+        if (s->r_out - s->r_in < 3 * dmax)
+            return mimas_error_set(err, MIMAS_EDATA, "%s: [ringshear] the gap r_out - r_in is "
+                                   "narrower than three particle diameters", name);
+    }
+    for (int a = 0; a < SIM_MAX_TYPES; a++)
+        for (int b = a; b < SIM_MAX_TYPES; b++) {
+            const sim_contact_params *c = &s->contact[a][b];
+            const char *what = NULL;
+            if (c->model == SIM_HERTZ && !(c->youngs_modulus > 0))
+                what = "model = hertz needs youngs_modulus > 0";
+            else if (c->model == SIM_HERTZ && !(c->restitution > 0))
+                what = "model = hertz needs restitution > 0";
+            else if (c->model == SIM_LINEAR && !(c->k_n > 0))
+                what = "model = linear needs stiffness_normal > 0";
+            else if (c->model == SIM_LINEAR && c->restitution > 0 && c->normal_clip &&
+                     c->restitution <= exp(-2))
+                what = "with normal_clip = yes no damping gives a restitution below exp(-2) = "
+                       "0.135 (set normal_clip = no)";
+            else if (c->cohesion_energy > 0 && !(c->youngs_modulus > 0))
+                what = "cohesion_energy > 0 needs youngs_modulus > 0";
+            if (what)
+                return mimas_error_set(err, MIMAS_EDATA, "%s: [contact] (types %d-%d): %s",
+                                       name, a, b, what);
+        }
+    return MIMAS_OK;
+}
+
+/* ---- printing ------------------------------------------------------------ */
+
+static void print_value(FILE *out, const key_desc *k, double v)
+{
+    if (k->kind == K_BOOL) {
+        fputs(v != 0 ? "yes" : "no", out);
+    } else if (k->kind == K_CHOICE) {
+        const char *p = k->choices;
+        for (int idx = 0; idx < (int)v; idx++)
+            p += strcspn(p, "|") + 1;
+        fprintf(out, "%.*s", (int)strcspn(p, "|"), p);
+    } else if (k->kind == K_INT) {
+        fprintf(out, "%.0f", v);
+    } else {
+        char buf[40];
+        snprintf(buf, sizeof buf, "%.15g", v);
+        if (strtod(buf, NULL) != v)
+            snprintf(buf, sizeof buf, "%.17g", v);
+        fputs(buf, out);
+    }
+}
+
+void sim_scenario_print(const sim_scenario *s, FILE *out)
+{
+    fprintf(out, "# mimas simulate scenario (%s); every key with its default.\n"
+                 "# Per type pair: [contact A-B] or [contact wall-B] override [contact].\n",
+            type_names[s->type]);
+    const char *section = "";
+    for (size_t m = 0; m < NKEYS; m++) {
+        const key_desc *k = &keys[m];
+        if (!(k->scenarios & (1 << s->type)))
+            continue;
+        if (strcmp(section, k->section) != 0) {
+            section = k->section;
+            fprintf(out, "\n[%s]\n", section);
+        }
+        const void *base = strcmp(section, "contact") == 0 ? (const void *)&s->contact[1][1]
+                                                           : (const void *)s;
+        fprintf(out, "%s = ", k->name);
+        print_value(out, k, load(base, k));
+        fprintf(out, "    ; %s%s%s%s\n", k->meaning, *k->unit ? " (" : "", k->unit,
+                *k->unit ? ")" : "");
+    }
+}
+
+void sim_scenario_print_doc(FILE *out)
+{
+    fputs("| section | key | unit | scenarios | meaning |\n|---|---|---|---|---|\n", out);
+    for (size_t m = 0; m < NKEYS; m++) {
+        const key_desc *k = &keys[m];
+        fprintf(out, "| %s | %s | %s | ", k->section, k->name, k->unit);
+        const char *sep = "";
+        for (int t = 0; t < 3; t++)
+            if (k->scenarios & (1 << t)) {
+                fprintf(out, "%s%s", sep, type_names[t]);
+                sep = ", ";
+            }
+        fprintf(out, " | %s |\n", k->meaning);
+    }
+}

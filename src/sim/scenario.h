@@ -1,0 +1,76 @@
+/* The parameters of a simulation scenario (mimas simulate), read from an INI
+ * file.  Every key is declared once in a table (scenario.c) with its section,
+ * type, default, range, unit and meaning; the parser, the error messages,
+ * `--print-defaults` and docs/simulate.md all come from that table. */
+#ifndef MIMAS_SIM_SCENARIO_H
+#define MIMAS_SIM_SCENARIO_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "error.h"
+
+enum { SIM_RINGSHEAR = 0, SIM_BOX = 1, SIM_PULLOFF = 2 };
+enum { SIM_LINEAR = 0, SIM_HERTZ = 1 };
+
+/* Material types: 0 stands for the walls, 1.. for particle types. */
+#define SIM_MAX_TYPES 4
+
+/* Contact-law parameters of one pair of types (PHYSICS 2). */
+typedef struct sim_contact_params {
+    int model;                 /* SIM_LINEAR or SIM_HERTZ */
+    double k_n, k_t;           /* linear stiffnesses, N/m */
+    double gamma_n, gamma_t;   /* linear damping, N s/m */
+    double restitution;        /* > 0: gamma_n derived from it (linear) / Hertz damping */
+    int normal_clip;           /* the normal force is never attractive (PHYSICS 2.1) */
+    double youngs_modulus, poisson;
+    double friction;           /* Coulomb mu */
+    double rolling_friction;   /* mu_r, a length (m) */
+    double cohesion_energy;    /* JKR surface energy w, J/m^2 */
+    double surface_tension;    /* liquid bridges, N/m */
+    double contact_angle;      /* degrees */
+} sim_contact_params;
+
+typedef struct sim_scenario {
+    int type;                  /* SIM_RINGSHEAR, SIM_BOX, SIM_PULLOFF */
+    long seed;
+    /* [run] */
+    double dt, skin, gravity[3];
+    long output_every, checkpoint_every;
+    int output_settle, dt_guard;
+    /* [particles] */
+    double diameter, diameter_spread, density, liquid_content, liquid_density, coarse_grain;
+    int rotation;
+    /* [contact] and [contact A-B]: by type pair, 0 = wall */
+    sim_contact_params contact[SIM_MAX_TYPES][SIM_MAX_TYPES];
+    /* [ringshear] */
+    double r_in, r_split, r_out, fill_height, omega, settle_time, shear_time;
+    long count;
+    int rough_bottom;
+    /* [box] */
+    double box_size[3], box_speed, box_time;
+    int box_periodic[3], box_bottom_wall;
+    long box_count;
+    /* [pulloff] */
+    double pull_speed, pull_distance;
+} sim_scenario;
+
+/* Defaults of the scenario type (SIM_*). */
+void sim_scenario_defaults(sim_scenario *s, int type);
+/* Reads an INI file.  Unknown sections or keys, bad numbers and values out of
+ * range are MIMAS_EDATA errors "FILE:LINE: ...". */
+int sim_scenario_load(sim_scenario *s, const char *path, mimas_error *err);
+/* Reads INI text (for tests); name is used in messages. */
+int sim_scenario_load_string(sim_scenario *s, const char *text, const char *name,
+                             mimas_error *err);
+/* Checks the combination of values (e.g. r_in < r_split < r_out); MIMAS_EDATA. */
+int sim_scenario_check(const sim_scenario *s, const char *name, mimas_error *err);
+/* Writes a complete INI file with every key of the scenario type, its value,
+ * unit and meaning. */
+void sim_scenario_print(const sim_scenario *s, FILE *out);
+/* The scenario type for a name ("ringshear"...), or -1. */
+int sim_scenario_type(const char *name);
+/* Markdown table of every key (docs/simulate.md is checked against it). */
+void sim_scenario_print_doc(FILE *out);
+
+#endif

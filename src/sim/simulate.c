@@ -1,0 +1,124 @@
+/* The time loop of mimas simulate. */
+#include <config.h>
+
+#include "simulate.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "checkpoint.h"
+#include "native.h"
+#include "setup.h"
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* --resume: the frames of the old file up to the checkpoint go into a new
+ * file (under a temporary name, renamed over the old one), which the run
+ * then continues.  Frames written after the checkpoint are dropped: the run
+ * writes them again. */
+static int reopen_output(const sim_run_options *o, int64_t last_step, mimas_writer **w,
+                         const mimas_writer_options *wo, mimas_error *err)
+{
+    char tmp[4200];
+    snprintf(tmp, sizeof tmp, "%s.resume-tmp", o->output);
+    mimas_native *r;
+    int rc = mimas_native_open(&r, o->output, err);
+    if (rc)
+        return rc;
+    if ((rc = mimas_writer_open(w, tmp, wo, err))) {
+        mimas_native_close(r);
+        return rc;
+    }
+    mimas_frame f;
+    mimas_frame_init(&f);
+    size_t frames = mimas_native_frames(r);
+    for (size_t k = 0; k < frames && !rc; k++) {
+        mimas_frame_meta m;
+        if ((rc = mimas_native_frame_meta(r, k, &m, err)) || m.step > last_step)
+            break;
+        if (!(rc = mimas_native_read(r, k, &f, err)))
+            rc = mimas_writer_append(*w, &f, err);
+    }
+    mimas_frame_free(&f);
+    mimas_native_close(r);
+    if (!rc && rename(tmp, o->output) != 0)
+        rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot replace it", o->output);
+    if (rc) {
+        mimas_writer_abort(*w);
+        *w = NULL;
+        remove(tmp);
+    }
+    return rc;
+}
+
+int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
+{
+    char ckpt[4200];
+    snprintf(ckpt, sizeof ckpt, "%s.ckpt", o->output);
+    dem_system s;
+    dem_init(&s);
+    sim_plan plan;
+    mimas_writer *w = NULL;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    mimas_writer_options wo;
+    mimas_writer_options_default(&wo);
+    wo.provenance = o->provenance;
+    int rc = sim_setup(&s, sc, &plan, err);
+    if (!rc && o->resume) {
+        if (!(rc = sim_checkpoint_read(&s, ckpt, err)))
+            rc = reopen_output(o, s.step, &w, &wo, err);
+    } else if (!rc) {
+        remove(ckpt);
+        if (!(rc = mimas_writer_open(&w, o->output, &wo, err))) {
+            sim_plan_apply(&plan, &s);
+            if (!(rc = dem_neighbours_build(&s, err)))
+                dem_forces(&s);
+            if (!rc && plan.output_from == 0 &&
+                !(rc = sim_frame_fill(&s, &plan, &f, err)))
+                rc = mimas_writer_append(w, &f, err);
+        }
+    }
+    double t0 = now(), last = t0;
+    int64_t first = s.step;
+    while (!rc && s.step < plan.total_steps) {
+        sim_plan_apply(&plan, &s);
+        if ((rc = dem_step(&s, err)))
+            break;
+        int frame = s.step >= plan.output_from && s.step % sc->output_every == 0;
+        if (frame && !(rc = sim_frame_fill(&s, &plan, &f, err)))
+            rc = mimas_writer_append(w, &f, err);
+        int stop = o->stop_at > 0 && s.step >= o->stop_at;
+        if (!rc && ((sc->checkpoint_every == 0 && frame) ||
+                    (sc->checkpoint_every > 0 && s.step % sc->checkpoint_every == 0) || stop ||
+                    s.step == plan.total_steps))
+            rc = sim_checkpoint_write(&s, ckpt, err);
+        if (!rc && o->progress && (s.step % 100 == 0 || s.step == plan.total_steps)) {
+            double t = now();
+            if (t - last >= 0.5 || s.step == plan.total_steps) {
+                last = t;
+                double rate = (double)(s.step - first) / (t - t0 > 0 ? t - t0 : 1e-9);
+                sim_progress p = {s.step, plan.total_steps, (double)s.step * s.dt, rate,
+                                  rate > 0 ? (double)(plan.total_steps - s.step) / rate : 0,
+                                  s.n, mimas_writer_frames(w)};
+                o->progress(o->ctx, &p);
+            }
+        }
+        if (stop)
+            break;
+    }
+    if (w) {
+        int rc2 = mimas_writer_close(w, rc ? NULL : err);
+        if (!rc)
+            rc = rc2;
+    }
+    mimas_frame_free(&f);
+    dem_free(&s);
+    return rc;
+}
