@@ -92,14 +92,12 @@ int sim_checkpoint_read(dem_system *s, const char *path, mimas_error *err)
     dem_nlist *nl = &s->nl;
     free(nl->start);
     free(nl->e);
-    free(nl->ef);
     nl->start = malloc((n + 1) * sizeof *nl->start);
     nl->e = malloc((h.ne ? h.ne : 1) * sizeof *nl->e);
-    nl->ef = calloc(h.ne ? h.ne : 1, sizeof *nl->ef);
     nl->n = n;
     nl->ne = h.ne;
     nl->builds = h.builds;
-    if (!nl->start || !nl->e || !nl->ef) {
+    if (!nl->start || !nl->e) {
         fclose(fp);
         return mimas_error_set(err, MIMAS_EIO, "out of memory reading %s", path);
     }

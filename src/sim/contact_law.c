@@ -130,15 +130,17 @@ double dem_contact_force(const dem_law *L, const dem_contact_geom *g, double dt,
             attraction += mimas_jkr_force(L->w, L->E_tilde, g->R_eff, g->delta);
         /* tangential history spring (PHYSICS 2.3): turn xi into the current
          * tangent plane keeping its length, add v_t dt */
-        double vt[3], len0 = sqrt(dot(xi, xi)), xn = dot(xi, n);
+        double vt[3], len0sq = dot(xi, xi), xn = dot(xi, n);
         for (int k = 0; k < 3; k++) {
             vt[k] = g->vc[k] - vn * n[k];
             xi[k] -= xn * n[k];
         }
-        double len1 = sqrt(dot(xi, xi));
-        if (len1 > 0)
+        double len1sq = dot(xi, xi);
+        if (len1sq > 0 && xn != 0) {
+            double scale = sqrt(len0sq / len1sq);
             for (int k = 0; k < 3; k++)
-                xi[k] *= len0 / len1;
+                xi[k] *= scale;
+        }
         for (int k = 0; k < 3; k++) {
             xi[k] += vt[k] * dt;
             ft[k] = -k_t * xi[k] - gamma_t * vt[k];
@@ -172,8 +174,8 @@ double dem_contact_force(const dem_law *L, const dem_contact_geom *g, double dt,
         ti[k] = -g->r_i * nxft[k];
         tj[k] = -g->r_j * nxft[k];
     }
-    double wm = sqrt(dot(g->w_rel, g->w_rel));
-    if (L->mu_r > 0 && wm > 0 && g->delta > 0) {
+    double wm = L->mu_r > 0 ? sqrt(dot(g->w_rel, g->w_rel)) : 0;
+    if (wm > 0 && g->delta > 0) {
         /* rolling friction (PHYSICS 2.3, 002 eq. 2.11) */
         for (int k = 0; k < 3; k++) {
             double tr = L->mu_r * (fn > 0 ? fn : 0) * g->w_rel[k] / wm;

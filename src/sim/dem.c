@@ -31,6 +31,8 @@ void dem_free(dem_system *s)
     free(s->nl.ef);
     free(s->nl.tstart);
     free(s->nl.tk);
+    free(s->nl.tpos);
+    free(s->nl.eft);
     memset(s, 0, sizeof *s);
 }
 
@@ -96,6 +98,7 @@ int dem_add_wall(dem_system *s, const dem_wall *w, mimas_error *err)
 int dem_configure(dem_system *s, const sim_scenario *sc, mimas_error *err)
 {
     s->coarse_grain = sc->coarse_grain;
+    s->any_periodic = s->periodic[0] || s->periodic[1] || s->periodic[2];
     s->dt = sc->dt;
     s->skin = sc->skin * sc->coarse_grain;
     memcpy(s->gravity, sc->gravity, sizeof s->gravity);

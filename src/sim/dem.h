@@ -49,19 +49,21 @@ typedef struct dem_entry {
     double bridge_volume;    /* V_B of the bridge (PHYSICS 2.4), 0 without one */
 } dem_entry;
 
-/* What one entry contributes: force on i (on j: minus it), torques on i and j. */
+/* What one entry contributes to one of its particles: force and torque. */
 typedef struct dem_entry_force {
-    double f[3], ti[3], tj[3];
+    double f[3], t[3];
 } dem_entry_force;
 
 typedef struct dem_nlist {
     size_t n;                /* particles the list was built for */
     size_t *start;           /* n + 1: entries of i are start[i] .. start[i+1]-1 */
     dem_entry *e;
-    dem_entry_force *ef;
+    dem_entry_force *ef;     /* per entry: on i */
     size_t ne, cap;
     size_t *tstart;          /* transposed: entries where particle j is the second one */
-    size_t *tk;
+    size_t *tk;              /* entry of each transposed slot */
+    size_t *tpos;            /* transposed slot of each entry */
+    dem_entry_force *eft;    /* per transposed slot: on j (so both gathers read in order) */
     size_t builds;           /* how many times it was built */
 } dem_nlist;
 
@@ -87,6 +89,7 @@ typedef struct dem_system {
     /* box: lo/hi, periodic flags (orthogonal) */
     double lo[3], hi[3];
     int periodic[3];
+    int any_periodic;
     /* laws by type pair (0 = wall) */
     dem_law law[SIM_MAX_TYPES][SIM_MAX_TYPES];
     int bridges_on;
@@ -116,7 +119,8 @@ int dem_configure(dem_system *s, const sim_scenario *sc, mimas_error *err);
 /* Neighbour list (neighbour.c): rebuild when needed; returns 1 if rebuilt. */
 int dem_neighbours_update(dem_system *s, mimas_error *err);
 int dem_neighbours_build(dem_system *s, mimas_error *err);
-/* Rebuilds the transposed index of the list (after the entries were restored). */
+/* Builds the transposed index of the list and the force arrays (after the
+ * entries were built or restored). */
 int dem_neighbours_transpose(dem_nlist *nl, mimas_error *err);
 
 /* Forces (forces.c): contact, wall and body forces into f and t. */
@@ -136,13 +140,14 @@ int dem_step(dem_system *s, mimas_error *err);
 static inline void dem_separation(const dem_system *s, const double *xi, const double *xj,
                                   double d[3])
 {
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 3; k++)
         d[k] = xi[k] - xj[k];
-        if (s->periodic[k]) {
-            double L = s->hi[k] - s->lo[k];
-            d[k] -= L * __builtin_nearbyint(d[k] / L);
-        }
-    }
+    if (s->any_periodic)
+        for (int k = 0; k < 3; k++)
+            if (s->periodic[k]) {
+                double L = s->hi[k] - s->lo[k];
+                d[k] -= L * __builtin_nearbyint(d[k] / L);
+            }
 }
 
 #endif

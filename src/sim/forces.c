@@ -69,22 +69,26 @@ static void pair_forces(dem_system *s)
     for (size_t i = 0; i < s->n; i++)
         for (size_t k = nl->start[i]; k < nl->start[i + 1]; k++) {
             dem_entry *e = &nl->e[k];
-            dem_entry_force *ef = &nl->ef[k];
+            dem_entry_force *ef = &nl->ef[k], *eft = &nl->eft[nl->tpos[k]];
             size_t j = (size_t)e->j;
-            double d[3], dist, delta = pair_overlap(s, i, j, d, &dist);
             int bridge = (e->flags & DEM_BRIDGE) != 0;
-            if (delta <= 0 && !bridge) {
+            double d[3], rsum = s->radius[i] + s->radius[j];
+            dem_separation(s, s->x[i], s->x[j], d);
+            double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            if (d2 >= rsum * rsum && !bridge) {
                 if (e->flags) {
                     e->flags = 0;
                     memset(e->xi, 0, sizeof e->xi);
                 }
                 memset(ef, 0, sizeof *ef);
+                memset(eft, 0, sizeof *eft);
                 continue;
             }
+            double dist = sqrt(d2), delta = rsum - dist, inv = 1 / dist;
             dem_contact_geom g;
             double ri = s->radius[i], rj = s->radius[j], rw[3];
             for (int q = 0; q < 3; q++) {
-                g.n[q] = d[q] / dist;
+                g.n[q] = d[q] * inv;
                 rw[q] = ri * s->w[i][q] + rj * s->w[j][q];
             }
             double rwxn[3];
@@ -106,7 +110,9 @@ static void pair_forces(dem_system *s)
                 e->bridge_volume = vb;
             }
             dem_contact_force(&s->law[s->type[i]][s->type[j]], &g, dt, e->xi, vb, ef->f,
-                              ef->ti, ef->tj);
+                              ef->t, eft->t);
+            for (int q = 0; q < 3; q++)
+                eft->f[q] = -ef->f[q];
             e->flags = (delta > 0 ? DEM_TOUCH : 0) | (bridge ? DEM_BRIDGE : 0);
         }
 }
@@ -126,7 +132,7 @@ double dem_wall_geometry(const dem_wall *w, const double x[3], double radius, do
             c[q] = x[q] - dist * n[q];
         }
     } else {
-        double ex = x[0] - w->axis[0], ey = x[1] - w->axis[1], rho = hypot(ex, ey);
+        double ex = x[0] - w->axis[0], ey = x[1] - w->axis[1], rho = sqrt(ex * ex + ey * ey);
         if (rho == 0) {
             ex = 1;
             rho = 1;
@@ -151,7 +157,7 @@ void dem_wall_velocity(const dem_wall *w, const double c[3], double v[3])
     if (w->omega == 0)
         return;
     double rx = c[0] - w->axis[0], ry = c[1] - w->axis[1];
-    if (w->kind == DEM_WALL_PLANE && hypot(rx, ry) < w->moving_from)
+    if (w->kind == DEM_WALL_PLANE && rx * rx + ry * ry < w->moving_from * w->moving_from)
         return;
     v[0] = -w->omega * ry;
     v[1] = w->omega * rx;
@@ -210,13 +216,13 @@ void dem_forces(dem_system *s)
         for (size_t k = nl->start[i]; k < nl->start[i + 1]; k++)
             for (int q = 0; q < 3; q++) {
                 f[q] += nl->ef[k].f[q];
-                t[q] += nl->ef[k].ti[q];
+                t[q] += nl->ef[k].t[q];
             }
         for (size_t m = nl->tstart[i]; m < nl->tstart[i + 1]; m++) {
-            const dem_entry_force *ef = &nl->ef[nl->tk[m]];
+            const dem_entry_force *eft = &nl->eft[m];
             for (int q = 0; q < 3; q++) {
-                f[q] -= ef->f[q];
-                t[q] += ef->tj[q];
+                f[q] += eft->f[q];
+                t[q] += eft->t[q];
             }
         }
         if (s->glued[i] < 0) {

@@ -266,10 +266,7 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
         start[i + 1] += start[i];
     size_t ne = start[n];
     dem_entry *e = malloc((ne ? ne : 1) * sizeof *e);
-    dem_entry_force *ef = calloc(ne ? ne : 1, sizeof *ef);
-    if (!e || !ef) {
-        free(e);
-        free(ef);
+    if (!e) {
         free(old_of);
         free(start);
         free(g.start);
@@ -281,11 +278,9 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
         visit(&b, i, e + start[i]);
     free(nl->start);
     free(nl->e);
-    free(nl->ef);
     nl->n = n;
     nl->start = start;
     nl->e = e;
-    nl->ef = ef;
     nl->ne = ne;
     nl->builds++;
     free(old_of);
@@ -301,11 +296,16 @@ int dem_neighbours_transpose(dem_nlist *nl, mimas_error *err)
 {
     size_t n = nl->n, ne = nl->ne;
     size_t *tstart = calloc(n + 1, sizeof *tstart), *tk = malloc((ne ? ne : 1) * sizeof *tk);
+    size_t *tpos = malloc((ne ? ne : 1) * sizeof *tpos);
     size_t *cur = malloc((n ? n : 1) * sizeof *cur);
-    if (!tstart || !tk || !cur) {
+    dem_entry_force *ef = calloc(ne ? ne : 1, sizeof *ef), *eft = calloc(ne ? ne : 1, sizeof *eft);
+    if (!tstart || !tk || !tpos || !cur || !ef || !eft) {
         free(tstart);
         free(tk);
+        free(tpos);
         free(cur);
+        free(ef);
+        free(eft);
         return mimas_error_set(err, MIMAS_EIO, "out of memory for the neighbour list");
     }
     const dem_entry *e = nl->e;
@@ -314,13 +314,21 @@ int dem_neighbours_transpose(dem_nlist *nl, mimas_error *err)
     for (size_t i = 0; i < n; i++)
         tstart[i + 1] += tstart[i];
     memcpy(cur, tstart, n * sizeof *cur);
-    for (size_t k = 0; k < ne; k++)
-        tk[cur[e[k].j]++] = k;
+    for (size_t k = 0; k < ne; k++) {
+        tpos[k] = cur[e[k].j]++;
+        tk[tpos[k]] = k;
+    }
     free(cur);
     free(nl->tstart);
     free(nl->tk);
+    free(nl->tpos);
+    free(nl->ef);
+    free(nl->eft);
     nl->tstart = tstart;
     nl->tk = tk;
+    nl->tpos = tpos;
+    nl->ef = ef;
+    nl->eft = eft;
     return MIMAS_OK;
 }
 int dem_neighbours_update(dem_system *s, mimas_error *err)
