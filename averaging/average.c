@@ -9,6 +9,7 @@
 #include <omp.h>
 #endif
 
+#include "contact_point.h"
 #include "deposit.h"
 #include "fields.h"
 
@@ -280,25 +281,6 @@ static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
     return MIMAS_OK;
 }
 
-/* The contact point of a contact whose other side was excluded (a glued
- * wall particle): the dump's, or c = r_i - (R_i - delta/2) n (PHYSICS 2). */
-static void contact_point(const mimas_frame *f, size_t k, size_t i, size_t j, double c[3])
-{
-    const mimas_particles *p = &f->particles;
-    if (f->contacts.present & MIMAS_C_POINT) {
-        memcpy(c, f->contacts.point[k], 3 * sizeof *c);
-        return;
-    }
-    double d[3] = {p->pos[i][0] - p->pos[j][0], p->pos[i][1] - p->pos[j][1],
-                   p->pos[i][2] - p->pos[j][2]};
-    mimas_box_min_image(&f->box, d);
-    double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    double delta = p->radius[i] + p->radius[j] - r;
-    double s = r > 0 ? (p->radius[i] - 0.5 * delta) / r : 0.0;
-    for (int m = 0; m < 3; m++)
-        c[m] = p->pos[i][m] - s * d[m];
-}
-
 /* A wall contact (or a contact with an excluded particle): f on the particle
  * at r, the segment from the contact point c to r (PHYSICS 1, 6), and the
  * force as a wall force density at c. */
@@ -306,8 +288,8 @@ static void deposit_wall_contact(const mimas_deposit *dp, const mimas_grid *g, d
                                  const mimas_box *box, const double r[3], const double c[3],
                                  const double f[3])
 {
-    double b[3] = {r[0] - c[0], r[1] - c[1], r[2] - c[2]};
-    mimas_box_min_image(box, b);
+    double b[3];
+    mimas_branch(box, r, c, b);
     double from[3] = {r[0] - b[0], r[1] - b[1], r[2] - b[2]};
     deposit_branch(dp, g, S, from, b, f, from);
     wall_ctx wc = {S, {0, 0, 0}};
@@ -348,9 +330,9 @@ static void deposit_frame(const mimas_average *a, const mimas_frame *f, const mi
             continue;
         }
         /* one side excluded (a wall particle): a wall contact of the other */
-        size_t in = a->keep[i] ? i : j, out = a->keep[i] ? j : i;
+        size_t in = a->keep[i] ? i : j;
         double cp[3], fin[3];
-        contact_point(f, k, in, out, cp);
+        mimas_contact_point(f, k, in, cp);
         for (int m = 0; m < 3; m++)
             fin[m] = in == i ? c->force[k][m] : -c->force[k][m];
         deposit_wall_contact(dp, g, S, &f->box, p->pos[in], cp, fin);

@@ -44,7 +44,7 @@ static void check_lattice(const double (*basis)[3], int nb, int expected_faces)
     size_t n = lattice(pos, m, a, basis, nb);
     mimas_box box = {{0, 0, 0}, {m * a, m * a, m * a}, 0, 0, 0, {1, 1, 1}};
     mimas_error err;
-    assert_int_equal(mimas_voro_cells(&box, n, (const double (*)[3])pos, NULL, vol, faces, &err),
+    assert_int_equal(mimas_voro_cells(&box, n, (const double (*)[3])pos, NULL, vol, faces, NULL, &err),
                      MIMAS_OK);
     for (size_t k = 0; k < n; k++) {
         assert_close(vol[k], a * a * a / nb, 1e-12 * a * a * a);
@@ -92,8 +92,8 @@ static void sum_equals_volume(mimas_box box, int radical)
         rad[k] = 0.01 + 0.02 * gsl_rng_uniform(rng);
     }
     mimas_error err;
-    int rc = mimas_voro_cells(&box, n, (const double (*)[3])pos, radical ? rad : NULL, vol,
-                              NULL, &err);
+    mimas_voro_options o = {radical ? rad : NULL, NULL, 0, 0, 0, NULL};
+    int rc = mimas_voro_cells(&box, n, (const double (*)[3])pos, &o, vol, NULL, NULL, &err);
     if (rc)
         fail_msg("%s", err.msg);
     double sum = 0;
@@ -127,11 +127,11 @@ static void test_outside_point_is_an_error(void **state)
     double pos[2][3] = {{0.5, 0.5, 0.5}, {1.5, 0.5, 0.5}};
     double vol[2];
     mimas_error err;
-    assert_int_equal(mimas_voro_cells(&box, 2, (const double (*)[3])pos, NULL, vol, NULL, &err),
+    assert_int_equal(mimas_voro_cells(&box, 2, (const double (*)[3])pos, NULL, vol, NULL, NULL, &err),
                      MIMAS_EDATA);
     mimas_box tilted_open = {{0, 0, 0}, {1, 1, 1}, 0.1, 0, 0, {1, 1, 0}};
     assert_int_equal(mimas_voro_cells(&tilted_open, 1, (const double (*)[3])pos, NULL, vol, NULL,
-                                      &err), MIMAS_EDATA);
+                                      NULL, &err), MIMAS_EDATA);
 }
 
 int main(void)
