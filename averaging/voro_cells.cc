@@ -74,8 +74,10 @@ class cut_wall : public voro::wall {
     }
     bool point_inside(double x, double y, double z) override
     {
-        bound b;
-        return !plane_at(x, y, z, b) || b.h >= 0.0;
+        if (w_.kind == MIMAS_VORO_PLANE)
+            return w_.normal[0] * x + w_.normal[1] * y + w_.normal[2] * z >= w_.offset;
+        double rho = std::hypot(x - w_.axis[0], y - w_.axis[1]);
+        return w_.inner ? rho >= w_.radius : rho <= w_.radius;
     }
     bool cut_cell(voro::voronoicell &c, double x, double y, double z) override
     {
@@ -340,7 +342,7 @@ extern "C" int mimas_voro_cells(const mimas_box *b, size_t n, const double (*pos
         return mimas_error_set(err, MIMAS_EDATA, "a triclinic box must be periodic along x, y "
                                "and z for Voronoi cells");
     if (J.triclinic && o->nwalls)
-        return mimas_error_set(err, MIMAS_EUSAGE, "walls need an orthogonal box");
+        return mimas_error_set(err, MIMAS_EDATA, "walls need an orthogonal box");
     size_t kw, ww;
     if (o->nwalls && outside_wall(o, n, pos, kw, ww))
         return wall_error(o, pos, kw, ww, err);
@@ -397,6 +399,10 @@ extern "C" int mimas_voro_reference(const mimas_box *b, size_t n, const double (
     double L[3] = {b->hi[0] - b->lo[0], b->hi[1] - b->lo[1], b->hi[2] - b->lo[2]};
     int g[3];
     block_grid(L, n, g);
+    for (size_t k = 0; k < n; k++) {
+        volume[k] = 0.0;
+        faces[k] = 0;
+    }
     try {
         voro::voronoicell c;
         if (radius) {
