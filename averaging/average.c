@@ -12,6 +12,7 @@
 #include "contact_point.h"
 #include "deposit.h"
 #include "fields.h"
+#include "voronoi.h"
 
 struct mimas_average {
     mimas_average_options opt;
@@ -28,7 +29,15 @@ struct mimas_average {
     unsigned char *keep;
     int *ncontacts;
     size_t cap;
+    mimas_voronoi_values vor;   /* --weight voronoi: this frame's per-particle values */
 };
+
+static mimas_fields_mode fields_mode(const mimas_weight *wt)
+{
+    return wt->voronoi ? MIMAS_FIELDS_VORONOI
+                       : (wt->kind == MIMAS_WEIGHT_SHEPARD ? MIMAS_FIELDS_SHEPARD
+                                                           : MIMAS_FIELDS_DENSITY);
+}
 
 int mimas_average_create(mimas_average **out, const mimas_average_options *o, mimas_error *err)
 {
@@ -107,6 +116,11 @@ int mimas_average_grid_none(const mimas_average *a)
     return a->opt.grid_none;
 }
 
+const mimas_weight *mimas_average_weight(const mimas_average *a)
+{
+    return &a->opt.weight;
+}
+
 /* ---- the local basis: Cartesian, or (e_r, e_phi, e_z) at a point ---- */
 
 typedef struct basis {
@@ -140,12 +154,32 @@ static void to_local(const basis *B, const double v[3], double out[3])
         out[k] = B->e[k][0] * v[0] + B->e[k][1] * v[1] + B->e[k][2] * v[2];
 }
 
+/* A tensor T[3a+b] in the local basis: E T E^T. */
+static void tensor_to_local(const basis *B, const double *T, double *out)
+{
+    if (!B->cyl) {
+        memcpy(out, T, 9 * sizeof *out);
+        return;
+    }
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double s = 0;
+            for (int a = 0; a < 3; a++)
+                for (int b = 0; b < 3; b++)
+                    s += B->e[i][a] * T[3 * a + b] * B->e[j][b];
+            out[3 * i + j] = s;
+        }
+}
+
 /* ---- deposit callbacks ---- */
 
 typedef struct particle_ctx {
     double *S;
     double m, vol, diam, c;   /* c: contact count */
     double v[3];
+    double vcell;             /* Voronoi cell volume (0: not a Voronoi average) */
+    int has_stress;
+    double stress[9];         /* V_cell sigma in the local basis */
 } particle_ctx;
 
 static void add_particle(void *user, size_t cell, double w, const double *grad)
@@ -174,6 +208,12 @@ static void add_particle(void *user, size_t cell, double w, const double *grad)
         S[S_P + a] += p->m * p->v[a] * w;
         for (int b = 0; b < 3; b++)
             S[S_K + 3 * a + b] += p->m * p->v[a] * p->v[b] * w;
+    }
+    S[S_VC] += p->vcell * w;
+    if (p->has_stress) {
+        S[S_VSC] += p->vcell * w;
+        for (int k = 0; k < 9; k++)
+            S[S_VS + k] += p->stress[k] * w;
     }
 }
 
@@ -257,6 +297,13 @@ static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
                                  err);
     if (rc)
         return rc;
+    if (a->opt.weight.voronoi) {
+        mimas_voronoi_values_of(p, &a->vor);
+        if (!a->vor.volume)
+            return mimas_error_set(err, MIMAS_EMISSING, "particles have no %s: write the cells "
+                                   "with mimas voronoi -o FILE.h5 and average that file",
+                                   MIMAS_VORONOI_VOLUME);
+    }
     if (p->n > a->cap) {
         unsigned char *k = realloc(a->keep, p->n);
         int *n = realloc(a->ncontacts, p->n * sizeof *n);
@@ -269,7 +316,9 @@ static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
         a->cap = p->n;
     }
     for (size_t k = 0; k < p->n; k++) {
-        a->keep[k] = (unsigned char)selected(&a->opt, p, k);
+        /* Voronoi: only the particles mimas voronoi reported */
+        int cell = !a->opt.weight.voronoi || !isnan(a->vor.volume[k]);
+        a->keep[k] = (unsigned char)(selected(&a->opt, p, k) && cell);
         a->ncontacts[k] = 0;
     }
     const mimas_contacts *c = &f->contacts;
@@ -309,12 +358,26 @@ static void deposit_frame(const mimas_average *a, const mimas_frame *f, const mi
         if (!a->keep[k])
             continue;
         particle_ctx pc = {S, p->mass[k], 4.0 / 3.0 * M_PI * pow(p->radius[k], 3),
-                           2.0 * p->radius[k], (double)a->ncontacts[k], {0, 0, 0}};
+                           2.0 * p->radius[k], (double)a->ncontacts[k], {0, 0, 0}, 0.0, 0, {0}};
         basis B;
         basis_at(g, p->pos[k], &B);
         to_local(&B, p->vel[k], pc.v);
+        if (a->opt.weight.voronoi) {
+            /* V_cell sigma_k: an empty cell's stress is NaN and left out */
+            pc.vcell = a->vor.volume[k];
+            const double *st = a->vor.stress ? &a->vor.stress[9 * k] : NULL;
+            pc.has_stress = st && !isnan(st[0]);
+            if (pc.has_stress) {
+                double T[9];
+                for (int m = 0; m < 9; m++)
+                    T[m] = pc.vcell * st[m];
+                tensor_to_local(&B, T, pc.stress);
+            }
+        }
         mimas_deposit_sphere(dp, p->pos[k], p->radius[k], add_particle, &pc);
     }
+    if (a->opt.weight.voronoi)
+        return; /* the stress comes from the per-particle stresses */
     const mimas_contacts *c = &f->contacts;
     for (size_t k = (size_t)t; f->has_contacts && k < c->n; k += (size_t)nt) {
         size_t i = c->i[k], j = c->j[k];
@@ -388,8 +451,8 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
             double ctr[3] = {0, 0, 0};
             if (cyl)
                 mimas_grid_cell_centre(&g, cell, ctr);
-            mimas_fields_derive(&S[cell * NSUMS], cyl, ctr[0],
-                                a->opt.weight.kind == MIMAS_WEIGHT_SHEPARD, a->scratch);
+            mimas_fields_derive(&S[cell * NSUMS], cyl, ctr[0], fields_mode(&a->opt.weight),
+                                a->scratch);
             for (size_t q = 0; q < nf; q++) {
                 double x = a->scratch[q];
                 if (isnan(x))
@@ -474,7 +537,7 @@ int mimas_average_fields(const mimas_average *a, double *fields, double *sd, dou
         double ctr[3] = {0, 0, 0};
         if (cyl)
             mimas_grid_cell_centre(&a->grid, cell, ctr);
-        mimas_fields_derive(S, cyl, ctr[0], a->opt.weight.kind == MIMAS_WEIGHT_SHEPARD,
+        mimas_fields_derive(S, cyl, ctr[0], fields_mode(&a->opt.weight),
                             &fields[cell * nf]);
         for (size_t q = 0; q < nf; q++) {
             size_t at = cell * nf + q;

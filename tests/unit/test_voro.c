@@ -307,6 +307,7 @@ static void test_random_annulus(void **state)
     double disk = M_PI * R * R * H, s = sum_of(vol, n);
     assert_true(s >= disk * (1 - 1e-12) && s < 1.01 * disk);
     assert_int_equal(mimas_voro_walls_parse("cylinder:0.5:inner", w, 2, &nw, &err), 0);
+    o.nwalls = nw;
     assert_int_equal(mimas_voro_cells(&box, n, (const double (*)[3])pos, &o, vol, NULL, NULL,
                                       &err), MIMAS_OK);
     double outside = (2.4 * 2.4 - M_PI * R_in * R_in) * H;
