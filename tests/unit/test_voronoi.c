@@ -22,6 +22,7 @@
 #include "average.h"
 #include "cell_list.h"
 #include "fields.h"
+#include "frac_image.h"
 #include "liggghts_set.h"
 #include "voronoi.h"
 
@@ -145,22 +146,6 @@ static void test_identity_hopper_walls(void **state)
     (void)state;
     check_identity("hopper_walls/dump.hopper.atom.gz", "hopper_walls/dump.hopper.pgl.gz",
                    "hopper_walls/dump.hopper.wgl", 2);
-}
-
-/* Minimum image by fractional coordinates (independent of the library's). */
-static void min_image_frac(const mimas_box *b, double d[3])
-{
-    double Lx = b->hi[0] - b->lo[0], Ly = b->hi[1] - b->lo[1], Lz = b->hi[2] - b->lo[2];
-    double s2 = d[2] / Lz;
-    double s1 = (d[1] - s2 * b->yz) / Ly;
-    double s0 = (d[0] - s1 * b->xy - s2 * b->xz) / Lx;
-    double s[3] = {s0, s1, s2};
-    for (int k = 0; k < 3; k++)
-        if (b->periodic[k])
-            s[k] -= round(s[k]);
-    d[0] = s[0] * Lx + s[1] * b->xy + s[2] * b->xz;
-    d[1] = s[1] * Ly + s[2] * b->yz;
-    d[2] = s[2] * Lz;
 }
 
 /* --velocity-width W: the kinetic part becomes sum m (v - V)(x)(v - V) with V
