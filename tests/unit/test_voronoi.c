@@ -268,7 +268,8 @@ static void test_columns_and_global_nu(void **state)
 
 /* --weight voronoi on a grid: the cells of a Cartesian bin grid hold the
  * particles whose centres they hold; nu = sum V_p / sum V_cell over those,
- * stress = sum V_cell sigma / sum V_cell; with --grid none the totals. */
+ * stress = sum V_cell sigma / sum V_cell; voronoi:w=W weighs them with a
+ * Gaussian instead. */
 static void test_voronoi_weight(void **state)
 {
     (void)state;
@@ -322,6 +323,34 @@ static void test_voronoi_weight(void **state)
         assert_true(vc > 0);
         assert_close(fields[c * nf + inu], vp / vc, 1e-12);
         assert_close(fields[c * nf + isxz], sxz / vc, 1e-9 * fabs(tr / vc));
+        assert_close(fields[c * nf + ip], tr / vc, 1e-9 * fabs(tr / vc));
+    }
+    mimas_average_free(a);
+    /* voronoi:w=W: the same ratios with the Gaussian g of each particle at the
+     * cell centre (shifted to 0 at 3 W; one image within reach) */
+    const double w = 0.002, shift = exp(-4.5);
+    assert_int_equal(mimas_weight_parse(&o.weight, "voronoi:w=0.002", &err), 0);
+    assert_int_equal(mimas_average_create(&a, &o, &err), 0);
+    assert_int_equal(mimas_average_add(a, &f, &err), 0);
+    assert_int_equal(mimas_average_fields(a, fields, NULL, NULL), 0);
+    for (size_t c = 0; c < cells; c++) {
+        double ctr[3], vp = 0, vc = 0, tr = 0;
+        mimas_grid_cell_centre(mimas_average_grid(a), c, ctr);
+        ctr[1] = 0.5 * (b->lo[1] + b->hi[1]);
+        for (size_t k = 0; k < p->n; k++) {
+            double d[3] = {ctr[0] - p->pos[k][0], ctr[1] - p->pos[k][1], ctr[2] - p->pos[k][2]};
+            min_image_frac(b, d);
+            double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            if (r2 >= 9 * w * w)
+                continue;
+            double g = exp(-r2 / (2 * w * w)) - shift;
+            const double *s = &val.stress[9 * k];
+            vp += g * 4.0 / 3.0 * M_PI * pow(p->radius[k], 3);
+            vc += g * val.volume[k];
+            tr += g * val.volume[k] * (s[0] + s[4] + s[8]) / 3.0;
+        }
+        assert_true(vc > 0);
+        assert_close(fields[c * nf + inu], vp / vc, 1e-12);
         assert_close(fields[c * nf + ip], tr / vc, 1e-9 * fabs(tr / vc));
     }
     free(fields);
