@@ -9,8 +9,10 @@
 #include <omp.h>
 #endif
 
+#include "contact_point.h"
 #include "deposit.h"
 #include "fields.h"
+#include "voronoi.h"
 
 struct mimas_average {
     mimas_average_options opt;
@@ -27,7 +29,15 @@ struct mimas_average {
     unsigned char *keep;
     int *ncontacts;
     size_t cap;
+    mimas_voronoi_values vor;   /* --weight voronoi: this frame's per-particle values */
 };
+
+static mimas_fields_mode fields_mode(const mimas_weight *wt)
+{
+    return wt->voronoi ? MIMAS_FIELDS_VORONOI
+                       : (wt->kind == MIMAS_WEIGHT_SHEPARD ? MIMAS_FIELDS_SHEPARD
+                                                           : MIMAS_FIELDS_DENSITY);
+}
 
 int mimas_average_create(mimas_average **out, const mimas_average_options *o, mimas_error *err)
 {
@@ -106,6 +116,11 @@ int mimas_average_grid_none(const mimas_average *a)
     return a->opt.grid_none;
 }
 
+const mimas_weight *mimas_average_weight(const mimas_average *a)
+{
+    return &a->opt.weight;
+}
+
 /* ---- the local basis: Cartesian, or (e_r, e_phi, e_z) at a point ---- */
 
 typedef struct basis {
@@ -139,12 +154,32 @@ static void to_local(const basis *B, const double v[3], double out[3])
         out[k] = B->e[k][0] * v[0] + B->e[k][1] * v[1] + B->e[k][2] * v[2];
 }
 
+/* A tensor T[3a+b] in the local basis: E T E^T. */
+static void tensor_to_local(const basis *B, const double *T, double *out)
+{
+    if (!B->cyl) {
+        memcpy(out, T, 9 * sizeof *out);
+        return;
+    }
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double s = 0;
+            for (int a = 0; a < 3; a++)
+                for (int b = 0; b < 3; b++)
+                    s += B->e[i][a] * T[3 * a + b] * B->e[j][b];
+            out[3 * i + j] = s;
+        }
+}
+
 /* ---- deposit callbacks ---- */
 
 typedef struct particle_ctx {
     double *S;
     double m, vol, diam, c;   /* c: contact count */
     double v[3];
+    double vcell;             /* Voronoi cell volume (0: not a Voronoi average) */
+    int has_stress;
+    double stress[9];         /* V_cell sigma in the local basis */
 } particle_ctx;
 
 static void add_particle(void *user, size_t cell, double w, const double *grad)
@@ -173,6 +208,12 @@ static void add_particle(void *user, size_t cell, double w, const double *grad)
         S[S_P + a] += p->m * p->v[a] * w;
         for (int b = 0; b < 3; b++)
             S[S_K + 3 * a + b] += p->m * p->v[a] * p->v[b] * w;
+    }
+    S[S_VC] += p->vcell * w;
+    if (p->has_stress) {
+        S[S_VSC] += p->vcell * w;
+        for (int k = 0; k < 9; k++)
+            S[S_VS + k] += p->stress[k] * w;
     }
 }
 
@@ -256,6 +297,13 @@ static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
                                  err);
     if (rc)
         return rc;
+    if (a->opt.weight.voronoi) {
+        mimas_voronoi_values_of(p, &a->vor);
+        if (!a->vor.volume)
+            return mimas_error_set(err, MIMAS_EMISSING, "particles have no %s: write the cells "
+                                   "with mimas voronoi -o FILE.h5 and average that file",
+                                   MIMAS_VORONOI_VOLUME);
+    }
     if (p->n > a->cap) {
         unsigned char *k = realloc(a->keep, p->n);
         int *n = realloc(a->ncontacts, p->n * sizeof *n);
@@ -268,7 +316,9 @@ static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
         a->cap = p->n;
     }
     for (size_t k = 0; k < p->n; k++) {
-        a->keep[k] = (unsigned char)selected(&a->opt, p, k);
+        /* Voronoi: only the particles mimas voronoi reported */
+        int cell = !a->opt.weight.voronoi || !isnan(a->vor.volume[k]);
+        a->keep[k] = (unsigned char)(selected(&a->opt, p, k) && cell);
         a->ncontacts[k] = 0;
     }
     const mimas_contacts *c = &f->contacts;
@@ -280,25 +330,6 @@ static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
     return MIMAS_OK;
 }
 
-/* The contact point of a contact whose other side was excluded (a glued
- * wall particle): the dump's, or c = r_i - (R_i - delta/2) n (PHYSICS 2). */
-static void contact_point(const mimas_frame *f, size_t k, size_t i, size_t j, double c[3])
-{
-    const mimas_particles *p = &f->particles;
-    if (f->contacts.present & MIMAS_C_POINT) {
-        memcpy(c, f->contacts.point[k], 3 * sizeof *c);
-        return;
-    }
-    double d[3] = {p->pos[i][0] - p->pos[j][0], p->pos[i][1] - p->pos[j][1],
-                   p->pos[i][2] - p->pos[j][2]};
-    mimas_box_min_image(&f->box, d);
-    double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    double delta = p->radius[i] + p->radius[j] - r;
-    double s = r > 0 ? (p->radius[i] - 0.5 * delta) / r : 0.0;
-    for (int m = 0; m < 3; m++)
-        c[m] = p->pos[i][m] - s * d[m];
-}
-
 /* A wall contact (or a contact with an excluded particle): f on the particle
  * at r, the segment from the contact point c to r (PHYSICS 1, 6), and the
  * force as a wall force density at c. */
@@ -306,8 +337,8 @@ static void deposit_wall_contact(const mimas_deposit *dp, const mimas_grid *g, d
                                  const mimas_box *box, const double r[3], const double c[3],
                                  const double f[3])
 {
-    double b[3] = {r[0] - c[0], r[1] - c[1], r[2] - c[2]};
-    mimas_box_min_image(box, b);
+    double b[3];
+    mimas_branch(box, r, c, b);
     double from[3] = {r[0] - b[0], r[1] - b[1], r[2] - b[2]};
     deposit_branch(dp, g, S, from, b, f, from);
     wall_ctx wc = {S, {0, 0, 0}};
@@ -327,12 +358,26 @@ static void deposit_frame(const mimas_average *a, const mimas_frame *f, const mi
         if (!a->keep[k])
             continue;
         particle_ctx pc = {S, p->mass[k], 4.0 / 3.0 * M_PI * pow(p->radius[k], 3),
-                           2.0 * p->radius[k], (double)a->ncontacts[k], {0, 0, 0}};
+                           2.0 * p->radius[k], (double)a->ncontacts[k], {0, 0, 0}, 0.0, 0, {0}};
         basis B;
         basis_at(g, p->pos[k], &B);
         to_local(&B, p->vel[k], pc.v);
+        if (a->opt.weight.voronoi) {
+            /* V_cell sigma_k: an empty cell's stress is NaN and left out */
+            pc.vcell = a->vor.volume[k];
+            const double *st = a->vor.stress ? &a->vor.stress[9 * k] : NULL;
+            pc.has_stress = st && !isnan(st[0]);
+            if (pc.has_stress) {
+                double T[9];
+                for (int m = 0; m < 9; m++)
+                    T[m] = pc.vcell * st[m];
+                tensor_to_local(&B, T, pc.stress);
+            }
+        }
         mimas_deposit_sphere(dp, p->pos[k], p->radius[k], add_particle, &pc);
     }
+    if (a->opt.weight.voronoi)
+        return; /* the stress comes from the per-particle stresses */
     const mimas_contacts *c = &f->contacts;
     for (size_t k = (size_t)t; f->has_contacts && k < c->n; k += (size_t)nt) {
         size_t i = c->i[k], j = c->j[k];
@@ -348,9 +393,9 @@ static void deposit_frame(const mimas_average *a, const mimas_frame *f, const mi
             continue;
         }
         /* one side excluded (a wall particle): a wall contact of the other */
-        size_t in = a->keep[i] ? i : j, out = a->keep[i] ? j : i;
+        size_t in = a->keep[i] ? i : j;
         double cp[3], fin[3];
-        contact_point(f, k, in, out, cp);
+        mimas_contact_point(f, k, in, cp);
         for (int m = 0; m < 3; m++)
             fin[m] = in == i ? c->force[k][m] : -c->force[k][m];
         deposit_wall_contact(dp, g, S, &f->box, p->pos[in], cp, fin);
@@ -406,8 +451,8 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
             double ctr[3] = {0, 0, 0};
             if (cyl)
                 mimas_grid_cell_centre(&g, cell, ctr);
-            mimas_fields_derive(&S[cell * NSUMS], cyl, ctr[0],
-                                a->opt.weight.kind == MIMAS_WEIGHT_SHEPARD, a->scratch);
+            mimas_fields_derive(&S[cell * NSUMS], cyl, ctr[0], fields_mode(&a->opt.weight),
+                                a->scratch);
             for (size_t q = 0; q < nf; q++) {
                 double x = a->scratch[q];
                 if (isnan(x))
@@ -492,7 +537,7 @@ int mimas_average_fields(const mimas_average *a, double *fields, double *sd, dou
         double ctr[3] = {0, 0, 0};
         if (cyl)
             mimas_grid_cell_centre(&a->grid, cell, ctr);
-        mimas_fields_derive(S, cyl, ctr[0], a->opt.weight.kind == MIMAS_WEIGHT_SHEPARD,
+        mimas_fields_derive(S, cyl, ctr[0], fields_mode(&a->opt.weight),
                             &fields[cell * nf]);
         for (size_t q = 0; q < nf; q++) {
             size_t at = cell * nf + q;

@@ -81,7 +81,41 @@ static double ratio(double a, double b)
     return b != 0.0 ? a / b : NAN;
 }
 
-void mimas_fields_derive(const double *S, int cylindrical, double r, int shepard, double *out)
+/* Pressure, shear stresses and stress ratio from the stress columns. */
+static void stress_measures(int cylindrical, double *out)
+{
+    const double *s = &out[F_STRESS];
+    double p = (s[0] + s[1] + s[2]) / 3.0;
+    out[F_P] = p;
+    double d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p;
+    double ss = d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+    out[F_TAU] = sqrt(0.5 * ss);
+    out[F_TAU_PHI] = cylindrical ? sqrt(s[3] * s[3] + s[5] * s[5]) : NAN;
+    out[F_MU] = p > 0 ? out[F_TAU] / p : NAN;
+}
+
+/* The Voronoi fields (PHYSICS 6, 002 Sec. 2.2): densities over the cells'
+ * volume, the stress the cell-volume weighted mean of the per-particle
+ * stresses; no kinetic/contact split, fabric, wall force or temperature. */
+static void voronoi_fields(const double *S, double *out)
+{
+    double vol = S[S_VC];
+    out[F_N] = ratio(S[S_N], vol);
+    out[F_RHO] = ratio(S[S_M], vol);
+    out[F_NU] = ratio(S[S_V], vol);
+    double T[9];
+    for (int k = 0; k < 9; k++)
+        T[k] = ratio(S[S_VS + k], S[S_VSC]);
+    sym6(T, &out[F_STRESS]);
+    for (int k = 0; k < 6; k++)
+        out[F_KSTRESS + k] = out[F_CSTRESS + k] = out[F_FABRIC + k] = NAN;
+    for (int k = 0; k < 3; k++)
+        out[F_WALL + k] = NAN;
+    out[F_T] = NAN;
+}
+
+void mimas_fields_derive(const double *S, int cylindrical, double r, mimas_fields_mode mode,
+                         double *out)
 {
     double rho = S[S_M];
     out[F_N] = S[S_N];
@@ -103,14 +137,6 @@ void mimas_fields_derive(const double *S, int cylindrical, double r, int shepard
     sym6(T, &out[F_STRESS]);
     sym6(K, &out[F_KSTRESS]);
     sym6(&S[S_C], &out[F_CSTRESS]);
-    const double *s = &out[F_STRESS];
-    double p = (s[0] + s[1] + s[2]) / 3.0;
-    out[F_P] = p;
-    double d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p;
-    double ss = d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
-    out[F_TAU] = sqrt(0.5 * ss);
-    out[F_TAU_PHI] = cylindrical ? sqrt(s[3] * s[3] + s[5] * s[5]) : NAN;
-    out[F_MU] = p > 0 ? out[F_TAU] / p : NAN;
     out[F_T] = ratio(K[0] + K[4] + K[8], 3.0 * S[S_N]);
     out[F_Z] = ratio(S[S_Z], S[S_N]);
     out[F_ZNR] = ratio(S[S_ZN], S[S_NN]);
@@ -119,7 +145,10 @@ void mimas_fields_derive(const double *S, int cylindrical, double r, int shepard
     for (int k = 0; k < 3; k++)
         out[F_WALL + k] = S[S_W + k];
     out[F_SHEAR] = out[F_SHEAR_L] = out[F_ETA] = out[F_I] = NAN;
-    if (shepard) {
+    if (mode == MIMAS_FIELDS_VORONOI)
+        voronoi_fields(S, out);
+    stress_measures(cylindrical, out);
+    if (mode == MIMAS_FIELDS_SHEPARD) {
         for (int k = 0; k < 3; k++)
             out[F_V + k] = ratio(S[S_U + k], S[S_N]);
         out[F_OMEGA] = cylindrical ? ratio(out[F_V + 1], r) : NAN;

@@ -25,8 +25,20 @@ enum {
     S_GM = S_W + 3, /* 3: sum m grad phi (Gaussian weights only) */
     S_GP = S_GM + 3,/* 9: sum m v_a d_b phi (Gaussian weights only) */
     S_U = S_GP + 9, /* 3: sum v phi, for Shepard's ratio of sums */
-    NSUMS = S_U + 3
+    S_VC = S_U + 3, /* sum V_cell phi: Voronoi cell volumes (--weight voronoi) */
+    S_VSC,          /* the same over particles with a stress */
+    S_VS,           /* 9: sum V_cell sigma phi: per-particle Voronoi stresses */
+    NSUMS = S_VS + 9
 };
+
+/* How the derived fields come from the sums: densities per unit volume,
+ * Shepard's ratio of sums (per-particle means only), or per-particle Voronoi
+ * values (densities per unit of the particles' cell volume). */
+typedef enum mimas_fields_mode {
+    MIMAS_FIELDS_DENSITY,
+    MIMAS_FIELDS_SHEPARD,
+    MIMAS_FIELDS_VORONOI
+} mimas_fields_mode;
 
 typedef struct mimas_field_desc {
     const char *name;   /* for Cartesian grids */
@@ -44,10 +56,14 @@ const char *mimas_field_name(size_t k, int cylindrical);
  * centre's radius (cylindrical grids).  Undefined values (velocity of an
  * empty cell, mu where p <= 0, ...) are NaN, as docs/fields.md says.  The
  * strain-rate columns are left NaN: they need the neighbouring cells
- * (mimas_fields_strain).  shepard: Shepard's ratio of sums (002 eq. 2.27)
- * defines only means of per-particle values (velocity as sum v phi / sum
- * phi, Z, d, the strain rates); the densities and stresses are NaN. */
-void mimas_fields_derive(const double *S, int cylindrical, double r, int shepard, double *out);
+ * (mimas_fields_strain).  Shepard's ratio of sums (002 eq. 2.27) defines
+ * only means of per-particle values (velocity as sum v phi / sum phi, Z, d,
+ * the strain rates); the densities and stresses are NaN.  Voronoi: n, rho
+ * and nu per total cell volume (nu = sum V_p / sum V_cell), the stress the
+ * cell-volume weighted mean of the per-particle stresses; the kinetic and
+ * contact parts, fabric, wall force and T are NaN. */
+void mimas_fields_derive(const double *S, int cylindrical, double r, mimas_fields_mode mode,
+                         double *out);
 /* Fills shear_rate, shear_rate_luding, eta and I of one cell from the
  * velocity gradient L[a][b] = d V_a / d x_b in the cell's (x y z) or
  * physical cylindrical (r phi z) components, where for cylindrical grids

@@ -340,22 +340,26 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
         }
         if (gf >= 0)
             H5Gclose(gf);
-        /* the full (non-symmetric) contact stress from the time-averaged sums */
+        /* the full (non-symmetric) contact stress from the time-averaged sums;
+         * Voronoi averages: the mean of the per-particle stresses instead */
+        int vor = mimas_average_weight(a)->voronoi;
         double *full = rc ? NULL : malloc(cells * 9 * sizeof *full);
         if (!rc && full) {
             double S[NSUMS];
             for (size_t c = 0; c < cells; c++) {
                 mimas_average_sums(a, c, S);
-                memcpy(&full[9 * c], &S[S_C], 9 * sizeof *full);
+                for (int k = 0; k < 9; k++)
+                    full[9 * c + (size_t)k] = vor ? S[S_VS + k] / S[S_VSC] : S[S_C + k];
             }
             hsize_t td[5] = {dims[0], dims[1], dims[2], 3, 3};
             hid_t gt = H5Gcreate2(file, "/tensors", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-            rc |= gt < 0 ||
-                  write_array(gt, "cstress", 5, td, full, "Pa",
-                              cyl ? "contact stress sum_c f_ij (x) (r_i - r_j) psi_ij, full tensor "
-                                    "[a][b] = f_a b_b in (r, phi, z) components"
-                                  : "contact stress sum_c f_ij (x) (r_i - r_j) psi_ij, full tensor "
-                                    "[a][b] = f_a b_b in (x, y, z) components");
+            char def[200];
+            snprintf(def, sizeof def, "%s, full tensor [a][b] = f_a b_b in (%s) components",
+                     vor ? "stress sum_k V_k sigma_k phi / sum_k V_k phi of the per-particle "
+                           "Voronoi stresses"
+                         : "contact stress sum_c f_ij (x) (r_i - r_j) psi_ij",
+                     cyl ? "r, phi, z" : "x, y, z");
+            rc |= gt < 0 || write_array(gt, vor ? "stress" : "cstress", 5, td, full, "Pa", def);
             if (gt >= 0)
                 H5Gclose(gt);
         }

@@ -18,6 +18,20 @@ int mimas_weight_parse(mimas_weight *wt, const char *spec, mimas_error *err)
         wt->kind = MIMAS_WEIGHT_BINS_CENTER;
         return MIMAS_OK;
     }
+    if (!strcmp(spec, "voronoi")) {
+        wt->kind = MIMAS_WEIGHT_BINS_CENTER;
+        wt->voronoi = 1;
+        return MIMAS_OK;
+    }
+    if (!strncmp(spec, "voronoi:", 8)) {
+        char gauss[256];
+        snprintf(gauss, sizeof gauss, "gauss:%s", spec + 8);
+        int rc = mimas_weight_parse(wt, gauss, err);
+        if (rc)
+            return rc;
+        wt->voronoi = 1;
+        return MIMAS_OK;
+    }
     if (strncmp(spec, "lucy:c=", 7) == 0) {
         char *end;
         wt->kind = MIMAS_WEIGHT_LUCY;
@@ -76,7 +90,8 @@ int mimas_weight_parse(mimas_weight *wt, const char *spec, mimas_error *err)
         return MIMAS_OK;
     }
     return mimas_error_set(err, MIMAS_EUSAGE, "unknown weight '%s' (bins, bins:center, "
-                           "gauss:w=W[,cutoff=C], lucy:c=C, shepard:w=W[,cutoff=C])", spec);
+                           "gauss:w=W[,cutoff=C], lucy:c=C, shepard:w=W[,cutoff=C], voronoi, "
+                           "voronoi:w=W[,cutoff=C])", spec);
 }
 
 double mimas_weight_reach(const mimas_weight *wt)

@@ -27,9 +27,12 @@ typedef struct mimas_weight {
     double coef;     /* norm / (2 pi w^2)^{3/2} */
     double inv2w2;   /* 1 / (2 w^2) */
     double reach2;   /* (cutoff w)^2 */
+    int voronoi;     /* per-particle Voronoi values (mimas voronoi -o), mapped by the
+                      * centre's cell (kind BINS_CENTER) or the Gaussian (kind GAUSS) */
 } mimas_weight;
 
-/* "bins", "bins:center", "gauss:w=W[,cutoff=C]", "lucy:c=C", "shepard:w=W[,cutoff=C]". */
+/* "bins", "bins:center", "gauss:w=W[,cutoff=C]", "lucy:c=C", "shepard:w=W[,cutoff=C]",
+ * "voronoi", "voronoi:w=W[,cutoff=C]". */
 int mimas_weight_parse(mimas_weight *wt, const char *spec, mimas_error *err);
 
 /* The Gaussian coarse-graining function at distance vector d: the Gaussian

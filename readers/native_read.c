@@ -500,6 +500,9 @@ static int shape_table(void *tab, const mimas_table_desc *d, const native_col *c
             size_t idx;
             rc = mimas_table_add_extra(tab, d, cols[c].name, cols[c].ncomp, &idx, err);
             bound[c].extra = (long)idx;
+            mimas_extra *x = &(*(mimas_extra **)((char *)tab + d->off_extra))[idx];
+            if (!rc && h5_attr_read_str(cols[c].ds, "unit", x->unit, sizeof x->unit) < 0)
+                x->unit[0] = '\0';
         }
     }
     return rc;

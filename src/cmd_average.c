@@ -17,7 +17,9 @@
 static const cli_option options[] = {
     {"grid", 0, "SPEC", "none, x=LO:HI:N[,y=..][,z=..], or r=LO:HI:N[,phi=LO:HI:N][,z=LO:HI:N]"},
     {"weight", 0, "SPEC", "bins (exact overlaps), bins:center, gauss:w=W[,cutoff=C], lucy:c=C, "
-                          "shepard:w=W[,cutoff=C]"},
+                          "shepard:w=W[,cutoff=C], voronoi (per-particle values of mimas "
+                          "voronoi -o, by the centre's cell), voronoi:w=W[,cutoff=C] (by a "
+                          "Gaussian)"},
     {"fields", 0, "LIST", "fields to write (comma list; 'stress' selects stress_*; default all)"},
     {"axis", 0, "X0,Y0,Z0,DX,DY,DZ", "axis of cylindrical grids (default: z through the origin)"},
     {"from", 0, "T0", "first time to use (s)"},

@@ -1,165 +1,229 @@
-/* mimas voronoi: per-particle Voronoi cells (voro++), their volumes and the
- * local solid fraction V_p/V_cell (PHYSICS 6, 002 Sec. 2.2). */
+/* mimas voronoi: per-particle Voronoi cells (voro++): volume, local solid
+ * fraction, faces, surface flags and per-particle stress (PHYSICS 6, 002
+ * Sec. 2.2 and eq. 3.8). */
 #include <config.h>
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "commands.h"
+#include "native.h"
 #include "reader.h"
-#include "voro_cells.h"
+#include "voro_walls.h"
+#include "voronoi.h"
 
 static const cli_option options[] = {
     {"radical", 0, NULL, "radical (Laguerre) tessellation, for polydisperse packings"},
+    {"walls", 0, "SPEC", "container walls bounding the cells: a comma list of plane:AXIS:H "
+                         "(AXIS x y z -x -y -z; the particles on the side the signed axis "
+                         "points to) and cylinder:R[:outer|:inner][:X0:Y0] (about an axis "
+                         "parallel to z; outer: particles inside; inner: particles outside)"},
+    {"max-extent", 0, "L", "cut every cell to within L of its particle (free surfaces)"},
+    {"velocity-width", 0, "W", "the kinetic stress uses velocities about the Shepard mean of "
+                               "a Gaussian of width W (default: V = 0)"},
     {"exclude-types", 0, "L", "particles of these types take part but are not reported "
                               "(e.g. glued wall particles)"},
-    {"tsv", 0, "FILE", "write the table to FILE (default: standard output)"},
+    {"output", 'o', "OUT.h5", "write the frames with the per-particle values to a native file"},
+    {"tsv", 0, "FILE", "write the table to FILE, or - for standard output (the default "
+                       "without -o)"},
+    {"threads", 0, "N", "OpenMP threads (default: OMP_NUM_THREADS or all cores)"},
 };
+
+enum { O_RADICAL, O_WALLS, O_EXTENT, O_VWIDTH, O_EXCLUDE, O_OUTPUT, O_TSV, O_THREADS };
+
+#define MAX_WALLS 16
 
 typedef struct voronoi_args {
     const cli_command *cmd;
-    int radical;
+    mimas_voronoi_options o;
+    mimas_voro_wall walls[MAX_WALLS];
     int32_t types[64];
-    size_t ntypes;
-    const char *tsv;
+    const char *tsv, *output;
 } voronoi_args;
 
-static int on_option(void *ctx, size_t opt, const char *arg)
+static int parse_types(voronoi_args *a, const char *arg)
 {
-    voronoi_args *a = ctx;
-    if (opt == 0) {
-        a->radical = 1;
-        return 0;
-    }
-    if (opt == 2) {
-        a->tsv = arg;
-        return 0;
-    }
     char *text = strdup(arg), *save = NULL;
     int rc = 0;
     for (char *tok = strtok_r(text, ",", &save); tok && !rc; tok = strtok_r(NULL, ",", &save)) {
         long v;
-        if (cli_parse_long(tok, &v) || v < INT32_MIN || v > INT32_MAX || a->ntypes >= 64)
+        if (cli_parse_long(tok, &v) || v < INT32_MIN || v > INT32_MAX || a->o.nexclude >= 64)
             rc = cli_fail(a->cmd, 1, "--exclude-types needs a comma list of type numbers, "
                           "not '%s'", arg);
         else
-            a->types[a->ntypes++] = (int32_t)v;
+            a->types[a->o.nexclude++] = (int32_t)v;
     }
     free(text);
     return rc;
 }
 
-static int reported(const voronoi_args *a, const mimas_particles *p, size_t k)
+static int positive(voronoi_args *a, size_t opt, const char *arg, double *v)
 {
-    if (!(p->present & MIMAS_P_TYPE))
-        return 1;
-    for (size_t m = 0; m < a->ntypes; m++)
-        if (p->type[k] == a->types[m])
-            return 0;
+    if (cli_parse_double(arg, v) || !(*v > 0) || !isfinite(*v))
+        return cli_fail(a->cmd, 1, "--%s needs a positive length, not '%s'", options[opt].name,
+                        arg);
+    return 0;
+}
+
+static int on_option(void *ctx, size_t opt, const char *arg)
+{
+    voronoi_args *a = ctx;
+    mimas_error err;
+    long threads;
+    switch (opt) {
+    case O_RADICAL: a->o.radical = 1; return 0;
+    case O_WALLS:
+        if (mimas_voro_walls_parse(arg, a->walls, MAX_WALLS, &a->o.nwalls, &err))
+            return cli_fail(a->cmd, 1, "--walls: %s", err.msg);
+        return 0;
+    case O_EXTENT: return positive(a, opt, arg, &a->o.max_extent);
+    case O_VWIDTH: return positive(a, opt, arg, &a->o.velocity_width);
+    case O_EXCLUDE: return parse_types(a, arg);
+    case O_OUTPUT: a->output = arg; return 0;
+    case O_TSV: a->tsv = arg; return 0;
+    case O_THREADS:
+        if (cli_parse_long(arg, &threads) || threads < 1 || threads > 1024)
+            return cli_fail(a->cmd, 1, "--threads needs a number from 1 to 1024, not '%s'", arg);
+        a->o.threads = (int)threads;
+        return 0;
+    }
     return 1;
 }
 
-/* One frame's cells; rows "step id x y z volume nu faces". */
-static int frame_cells(const voronoi_args *a, const mimas_frame *f, FILE *out, double **vol,
-                       int **faces, size_t *cap, mimas_error *err)
+static void print_value(FILE *out, double v)
+{
+    if (isnan(v))
+        fputs("\tnan", out);
+    else
+        fprintf(out, "\t%.17g", v);
+}
+
+/* Rows "step id x y z volume nu faces surface stress_xx .. stress_zz" of the
+ * reported particles. */
+static int write_rows(const mimas_voronoi *v, const mimas_frame *f, FILE *out, mimas_error *err)
 {
     const mimas_particles *p = &f->particles;
-    int rc = mimas_table_require(p, &mimas_particles_desc, MIMAS_P_RADIUS, err);
-    if (rc)
-        return rc;
-    if (p->n > *cap) {
-        double *v = realloc(*vol, p->n * sizeof *v);
-        int *fc = realloc(*faces, p->n * sizeof *fc);
-        if (v)
-            *vol = v;
-        if (fc)
-            *faces = fc;
-        if (!v || !fc)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
-        *cap = p->n;
-    }
-    rc = mimas_voro_cells(&f->box, p->n, (const double (*)[3])p->pos,
-                          a->radical ? p->radius : NULL, *vol, *faces, err);
-    if (rc)
-        return rc;
+    mimas_voronoi_values val;
+    mimas_voronoi_values_of(p, &val);
     for (size_t k = 0; k < p->n; k++) {
-        if (!reported(a, p, k))
+        if (!mimas_voronoi_reported(v, p, k))
             continue;
-        double vp = 4.0 / 3.0 * M_PI * pow(p->radius[k], 3);
-        fprintf(out, "%lld\t%lld\t%.17g\t%.17g\t%.17g\t%.17g\t", (long long)f->step,
-                (long long)p->id[k], p->pos[k][0], p->pos[k][1], p->pos[k][2], (*vol)[k]);
-        /* an empty radical cell (a small sphere inside a big one's) has no fraction */
-        if ((*vol)[k] > 0)
-            fprintf(out, "%.17g", vp / (*vol)[k]);
-        else
-            fputs("nan", out);
-        fprintf(out, "\t%d\n", (*faces)[k]);
+        fprintf(out, "%lld\t%lld", (long long)f->step, (long long)p->id[k]);
+        for (int d = 0; d < 3; d++)
+            print_value(out, p->pos[k][d]);
+        print_value(out, val.volume[k]);
+        print_value(out, val.nu[k]);
+        fprintf(out, "\t%d\t%d", (int)val.faces[k], (int)val.surface[k]);
+        for (int m = 0; m < 9; m++)
+            print_value(out, val.stress ? val.stress[9 * k + (size_t)m] : NAN);
+        fputc('\n', out);
     }
     return ferror(out) ? mimas_error_set(err, MIMAS_EIO, "cannot write the table") : MIMAS_OK;
 }
 
 static int run(const cli_command *cmd, int argc, char **argv)
 {
-    voronoi_args a = {0};
+    voronoi_args a;
+    memset(&a, 0, sizeof a);
     a.cmd = cmd;
+    a.o.walls = a.walls;
+    a.o.exclude = a.types;
     cli_inputs in = {0};
     int first;
     int rc = cli_parse(cmd, argc, argv, on_option, &a, &in, &first);
     mimas_reader *r = NULL;
     if (!rc)
         rc = cli_open_inputs(cmd, &in, argc, argv, first, &r);
+    mimas_error err;
+    mimas_voronoi *vor = NULL;
+    if (!rc && mimas_voronoi_create(&vor, &a.o, &err))
+        rc = cli_fail(cmd, mimas_exit_status(err.code), "%s", err.msg);
     if (rc) {
+        mimas_reader_close(r);
         cli_inputs_free(&in);
         return rc < 0 ? 0 : rc;
     }
-    mimas_error err;
-    cli_output table;
-    int status = cli_output_open(&table, a.tsv, &err);
+    /* outputs: the table unless only -o was asked for; the native file */
+    cli_output table = {0};
+    int status = MIMAS_OK;
+    if (a.tsv || !a.output)
+        status = cli_output_open(&table, a.tsv, &err);
     FILE *out = table.fp;
     if (out)
-        fputs("step\tid\tx\ty\tz\tvolume\tnu\tfaces\n", out);
+        fputs("step\tid\tx\ty\tz\tvolume\tnu\tfaces\tsurface\tstress_xx\tstress_xy\tstress_xz\t"
+              "stress_yx\tstress_yy\tstress_yz\tstress_zx\tstress_zy\tstress_zz\n", out);
+    mimas_writer *w = NULL;
+    char *provenance = cli_command_line(argc, argv);
+    if (!status && a.output) {
+        mimas_writer_options wo;
+        mimas_writer_options_default(&wo);
+        wo.atomic = 1; /* no partial output */
+        wo.provenance = provenance;
+        status = mimas_writer_open(&w, a.output, &wo, &err);
+    }
     mimas_frame f;
     mimas_frame_init(&f);
-    double *vol = NULL;
-    int *faces = NULL;
-    size_t cap = 0;
     cli_progress prog;
     cli_progress_start(&prog, &in);
     size_t frames = 0;
     while (!status && (status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
-        status = frame_cells(&a, &f, out, &vol, &faces, &cap, &err);
+        status = mimas_voronoi_frame(vor, &f, &err);
         if (status && status != MIMAS_EIO)
             mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
+        if (!status && out)
+            status = write_rows(vor, &f, out, &err);
+        if (!status && w)
+            status = mimas_writer_append(w, &f, &err);
         cli_progress_frame(&prog, cmd, ++frames, (long long)f.step, f.time);
     }
     cli_progress_done(&prog);
-    free(vol);
-    free(faces);
+    size_t skipped = mimas_reader_skipped(r);
     mimas_frame_free(&f);
     mimas_reader_close(r);
     cli_inputs_free(&in);
+    mimas_voronoi_free(vor);
+    if (status == MIMAS_END && frames == 0)
+        status = mimas_error_set(&err, MIMAS_EDATA, "%s: no frames", argv[first]);
+    if (w) {
+        if (status == MIMAS_END) {
+            int closed = mimas_writer_close(w, &err);
+            if (closed)
+                status = closed;
+        } else {
+            mimas_writer_abort(w);
+        }
+    }
+    free(provenance);
     int closed = cli_output_close(&table, status == MIMAS_END, &err);
     if (closed)
         status = closed;
     if (status != MIMAS_END)
         return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
+    if (skipped)
+        fprintf(stderr, "mimas voronoi: skipped %zu frames whose contact data were missing\n",
+                skipped);
     return 0;
 }
 
 const cli_command cmd_voronoi = {
     "voronoi",
-    "per-particle Voronoi cells: volume, local solid fraction, faces",
+    "per-particle Voronoi cells: volume, local solid fraction, faces, surface, stress",
     "[options] INPUT...",
     "Tessellates every frame with voro++ (plain, or radical with --radical) in its\n"
     "box (periodic along the periodic axes; a tilted box must be periodic along\n"
-    "all three) and writes one row per particle: step, id, position, cell volume,\n"
-    "local solid fraction V_p/V_cell and number of faces.  Container walls other\n"
-    "than the box, the free-surface cut-off and per-particle stresses are not yet\n"
-    "supported.",
+    "all three and cannot have walls), bounded by the --walls (a cylinder by the\n"
+    "plane tangent to it at each particle's angle, as voro++ does) and cut to\n"
+    "--max-extent about each particle.  Writes one row per particle: step, id,\n"
+    "position, cell volume, local solid fraction V_p/V_cell, number of faces,\n"
+    "surface flags (1: the cell touches a wall or a non-periodic box face, 2: it\n"
+    "was cut by --max-extent, 3: both) and, when contact data are given, the\n"
+    "per-particle stress (1/V_cell)[m (v - V)(x)(v - V) + sum_j f_kj (x) (r_k - c_kj)]\n"
+    "(wall contacts included; compression positive; nine components, [a][b] =\n"
+    "f_a b_b).  -o writes the frames with these values as extra per-particle\n"
+    "columns voronoi_volume, voronoi_nu, voronoi_faces, voronoi_surface and\n"
+    "voronoi_stress (docs/format.md) for mimas average --weight voronoi.",
     options,
     sizeof options / sizeof options[0],
     1,

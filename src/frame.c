@@ -199,6 +199,7 @@ int mimas_table_add_extra(void *tab, const mimas_table_desc *d, const char *name
     x->name = strdup(name);
     x->ncomp = ncomp;
     x->data = NULL;
+    x->unit[0] = '\0';
     size_t cap = *MEMBER(tab, d->off_cap, size_t);
     if (!x->name || grow((void **)&x->data, cap * (size_t)ncomp * sizeof(double), err)) {
         free(x->name);

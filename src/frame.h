@@ -41,6 +41,7 @@ typedef struct mimas_extra {
     char *name;
     int ncomp;
     double *data;            /* n * ncomp values */
+    char unit[16];           /* SI unit, "" if unknown (files: the "unit" attribute) */
 } mimas_extra;
 
 /* ---- particles ---- */

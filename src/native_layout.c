@@ -38,6 +38,17 @@ void *native_col_data(const void *tab, const mimas_table_desc *d, const native_c
     return extra[c->extra].data;
 }
 
+const char *native_col_unit(const void *tab, const mimas_table_desc *d, const native_col *c)
+{
+    if (c->desc_col >= 0)
+        return d->columns[c->desc_col].unit;
+    const size_t n_extra = *(const size_t *)((const char *)tab + d->off_n_extra);
+    const mimas_extra *extra = *(mimas_extra *const *)((const char *)tab + d->off_extra);
+    if (c->extra < 0 || (size_t)c->extra >= n_extra || !extra[c->extra].unit[0])
+        return NULL;
+    return extra[c->extra].unit;
+}
+
 size_t native_cols_of(const void *tab, const mimas_table_desc *d, native_col *cols)
 {
     size_t k = 0;

@@ -31,6 +31,9 @@ hid_t native_file_type(mimas_elem_type t);
 hid_t native_mem_type(mimas_elem_type t);
 /* The array a column refers to in a table (NULL when it has no such column). */
 void *native_col_data(const void *tab, const mimas_table_desc *d, const native_col *c);
+/* A column's unit: its descriptor's, or an extra column's own (NULL if it
+ * has none). */
+const char *native_col_unit(const void *tab, const mimas_table_desc *d, const native_col *c);
 /* Lists the columns a table carries (present standard ones, then extras).
  * Returns the count; cols must hold desc->ncolumns + n_extra entries. */
 size_t native_cols_of(const void *tab, const mimas_table_desc *d, native_col *cols);

@@ -230,8 +230,7 @@ static int create_particles(mimas_writer *w, const mimas_frame *f, mimas_error *
         const void *fill = nc->type == MIMAS_T_F64   ? (const void *)&fill_f
                            : nc->type == MIMAS_T_I64 ? (const void *)&fill_id
                                                      : (const void *)&fill_i32;
-        const char *unit = nc->desc_col >= 0 ? mimas_particles_desc.columns[nc->desc_col].unit
-                                             : NULL;
+        const char *unit = native_col_unit(p, &mimas_particles_desc, nc);
         /* two unlimited dimensions: frames and particle slots */
         nc->ds = make_element(w, path, native_file_type(nc->type), rank, 2, dims, chunk, fill,
                               w->opt.deflate, unit);
@@ -313,7 +312,7 @@ static int create_flat(mimas_writer *w, flat_table *t, const void *tab, mimas_er
             H5Gclose(g);
             return h5fail(w, err, "create a contact dataset");
         }
-        const char *unit = nc->desc_col >= 0 ? t->desc->columns[nc->desc_col].unit : NULL;
+        const char *unit = native_col_unit(tab, t->desc, nc);
         if (unit && strcmp(unit, "1") != 0)
             h5_attr_write_str(nc->ds, "unit", unit);
         if (nc->type == MIMAS_T_INDEX)

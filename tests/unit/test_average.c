@@ -18,57 +18,21 @@
 #include "assert_close.h"
 #include "average.h"
 #include "fields.h"
+#include "frac_image.h"
+#include "liggghts_set.h"
 #include "reader.h"
-
-#define KEYS "pos,vel,id,force,force_normal,force_tangential,torque,torque_normal," \
-             "torque_tangential,history,contactArea,delta,contactPoint"
 
 static const char *data(const char *rel)
 {
-    static char buf[4][512];
-    static int k;
-    k = (k + 1) % 4;
-    const char *top = getenv("TEST_SRCDIR");
-    snprintf(buf[k], sizeof buf[k], "%s/data/liggghts/%s", top ? top : "tests", rel);
-    return buf[k];
+    return liggghts_data(rel);
 }
 
 /* The last frame of a LIGGGHTS data set. */
 static void last_frame(const char *atoms, const char *pgl, mimas_frame *f)
 {
-    const char *inputs[1] = {atoms}, *contacts[1] = {pgl};
-    mimas_reader_options o;
-    mimas_reader_options_default(&o);
-    o.contacts = contacts;
-    o.ncontacts = 1;
-    o.contact_columns = KEYS;
-    mimas_reader *r;
     mimas_error err;
-    if (mimas_reader_open(&r, inputs, 1, &o, &err))
+    if (liggghts_last_frame(atoms, pgl, NULL, f, &err))
         fail_msg("%s", err.msg);
-    int n = 0, rc;
-    while ((rc = mimas_reader_next(r, f, &err)) == MIMAS_OK)
-        n++;
-    assert_int_equal(rc, MIMAS_END);
-    assert_true(n > 0);
-    mimas_reader_close(r);
-}
-
-/* Minimum image by fractional coordinates (an independent route from the
- * library's): s = h^-1 d, s -= round(s), d = h s, h = [a b c] as columns. */
-static void min_image_frac(const mimas_box *b, double d[3])
-{
-    double Lx = b->hi[0] - b->lo[0], Ly = b->hi[1] - b->lo[1], Lz = b->hi[2] - b->lo[2];
-    double s2 = d[2] / Lz;
-    double s1 = (d[1] - s2 * b->yz) / Ly;
-    double s0 = (d[0] - s1 * b->xy - s2 * b->xz) / Lx;
-    double s[3] = {s0, s1, s2};
-    for (int k = 0; k < 3; k++)
-        if (b->periodic[k])
-            s[k] -= round(s[k]);
-    d[0] = s[0] * Lx + s[1] * b->xy + s[2] * b->xz;
-    d[1] = s[1] * Ly + s[2] * b->yz;
-    d[2] = s[2] * Lz;
 }
 
 /* sum over contacts of f (x) b, full tensor T[3a+b] = f_a b_b */
@@ -629,20 +593,11 @@ static void test_cylindrical_kernel_integrates_mass(void **state)
 static void test_exclude_types_as_walls(void **state)
 {
     (void)state;
-    const char *inputs[1] = {data("hopper_walls/dump.hopper.atom.gz")};
-    const char *contacts[1] = {data("hopper_walls/dump.hopper.pgl.gz")};
-    const char *walls[1] = {data("hopper_walls/dump.hopper.wgl")};
-    mimas_reader_options ro;
-    mimas_reader_options_default(&ro);
-    ro.contacts = contacts;
-    ro.ncontacts = 1;
-    ro.contact_columns = KEYS;
-    ro.walls = walls;
-    ro.nwalls = 1;
-    ro.wall_columns = KEYS;
     mimas_reader *r;
     mimas_error err;
-    assert_int_equal(mimas_reader_open(&r, inputs, 1, &ro, &err), 0);
+    assert_int_equal(liggghts_open(&r, data("hopper_walls/dump.hopper.atom.gz"),
+                                   data("hopper_walls/dump.hopper.pgl.gz"),
+                                   data("hopper_walls/dump.hopper.wgl"), &err), 0);
     mimas_frame f;
     mimas_frame_init(&f);
     while (mimas_reader_next(r, &f, &err) == MIMAS_OK)

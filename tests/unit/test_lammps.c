@@ -19,42 +19,19 @@
 #include <zlib.h>
 
 #include "assert_close.h"
+#include "liggghts_set.h"
 #include "reader.h"
 
-#define KEYS "pos,vel,id,force,force_normal,force_tangential,torque,torque_normal," \
-             "torque_tangential,history,contactArea,delta,contactPoint"
-
-static char path_buf[8][512];
 static const char *data(const char *rel)
 {
-    static int k;
-    k = (k + 1) % 8;
-    const char *top = getenv("TEST_SRCDIR");
-    snprintf(path_buf[k], sizeof path_buf[k], "%s/data/liggghts/%s", top ? top : "tests", rel);
-    return path_buf[k];
+    return liggghts_data(rel);
 }
 
 static mimas_reader *open_set(const char *atoms, const char *pgl, const char *wgl)
 {
-    static const char *contacts[1], *walls[1], *inputs[1];
-    mimas_reader_options o;
-    mimas_reader_options_default(&o);
-    inputs[0] = atoms;
-    if (pgl) {
-        contacts[0] = pgl;
-        o.contacts = contacts;
-        o.ncontacts = 1;
-        o.contact_columns = KEYS;
-    }
-    if (wgl) {
-        walls[0] = wgl;
-        o.walls = walls;
-        o.nwalls = 1;
-        o.wall_columns = KEYS;
-    }
     mimas_reader *r;
     mimas_error err;
-    if (mimas_reader_open(&r, inputs, 1, &o, &err))
+    if (liggghts_open(&r, atoms, pgl, wgl, &err))
         fail_msg("%s", err.msg);
     return r;
 }
