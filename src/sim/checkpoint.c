@@ -21,7 +21,7 @@ typedef struct ck_header {
 /* the particle arrays, in one list for writing and reading */
 #define CK_ARRAYS(X)                                                                         \
     X(id) X(type) X(radius) X(mass) X(inertia) X(liquid) X(x) X(v) X(w) X(f) X(t) X(x_ref) \
-    X(image) X(glued) X(anchor) X(bridges)
+    X(image) X(glued) X(anchor) X(bridges) X(wall_near)
 
 static int put(FILE *fp, const void *p, size_t size)
 {

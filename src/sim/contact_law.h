@@ -47,12 +47,4 @@ typedef struct dem_contact_geom {
     double w_rel[3];   /* w_i - w_j (rolling friction) */
 } dem_contact_geom;
 
-/* The force of one contact.  hist_xi is the tangential spring (updated),
- * bridge_volume > 0 if a liquid bridge acts (then the attraction acts also
- * across a gap).  Writes the force on i, the torques on i and j and returns
- * the magnitude of the repulsive normal force. */
-double dem_contact_force(const dem_law *law, const dem_contact_geom *g, double dt,
-                         double hist_xi[3], double bridge_volume, double f[3], double ti[3],
-                         double tj[3]);
-
 #endif

@@ -16,7 +16,7 @@ void dem_init(dem_system *s)
 
 #define PARTICLE_ARRAYS(X)                                                                 \
     X(id) X(type) X(radius) X(mass) X(inertia) X(liquid) X(x) X(v) X(w) X(f) X(t) X(x_ref) \
-    X(image) X(glued) X(anchor) X(bridges)
+    X(image) X(glued) X(anchor) X(bridges) X(wall_near)
 
 void dem_free(dem_system *s)
 {

@@ -80,6 +80,7 @@ typedef struct dem_system {
     int32_t *glued;                    /* -1: free; else the motion it follows */
     double (*anchor)[3];               /* glued: position at angle 0 and shift 0 */
     int32_t *bridges;                  /* bridges of each particle, this step */
+    uint8_t *wall_near;                /* bit w: within reach of wall w until the next list build */
     /* walls; wall-contact history and forces, n x nwalls */
     dem_wall walls[DEM_MAX_WALLS];
     int nwalls;

@@ -8,14 +8,8 @@
 #include <string.h>
 
 #include "cohesion.h"
+#include "contact_force.h"
 #include "dem.h"
-
-static void cross(const double a[3], const double b[3], double c[3])
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /* overlap of entry k of particle i; the separation vector and distance in d, *dist */
 static double pair_overlap(const dem_system *s, size_t i, size_t j, double d[3], double *dist)
@@ -92,7 +86,7 @@ static void pair_forces(dem_system *s)
                 rw[q] = ri * s->w[i][q] + rj * s->w[j][q];
             }
             double rwxn[3];
-            cross(rw, g.n, rwxn);
+            dem_cross(rw, g.n, rwxn);
             for (int q = 0; q < 3; q++) {
                 g.vc[q] = s->v[i][q] - s->v[j][q] - rwxn[q];
                 g.w_rel[q] = s->w[i][q] - s->w[j][q];
@@ -166,6 +160,8 @@ void dem_wall_velocity(const dem_wall *w, const double c[3], double v[3])
 static void wall_forces(dem_system *s, size_t i, double f[3], double t[3])
 {
     for (int wi = 0; wi < s->nwalls; wi++) {
+        if (!(s->wall_near[i] & (1u << wi)))
+            continue;
         const dem_wall *w = &s->walls[wi];
         size_t slot = i * DEM_MAX_WALLS + (size_t)wi;
         dem_contact_geom g;
@@ -184,7 +180,7 @@ static void wall_forces(dem_system *s, size_t i, double f[3], double t[3])
         double rw[3], rwxn[3], tj[3];
         for (int q = 0; q < 3; q++)
             rw[q] = s->radius[i] * s->w[i][q];
-        cross(rw, g.n, rwxn);
+        dem_cross(rw, g.n, rwxn);
         for (int q = 0; q < 3; q++) {
             g.vc[q] = s->v[i][q] - rwxn[q] - vw[q];
             g.w_rel[q] = s->w[i][q];

@@ -143,7 +143,7 @@ static int sort_by_cell(dem_system *s, cell_grid *g, size_t *old_of, mimas_error
 #define PERMUTE(a) permute(s->a, sizeof *s->a, old_of, n, tmp);
     PERMUTE(id) PERMUTE(type) PERMUTE(radius) PERMUTE(mass) PERMUTE(inertia) PERMUTE(liquid)
     PERMUTE(x) PERMUTE(v) PERMUTE(w) PERMUTE(f) PERMUTE(t) PERMUTE(image) PERMUTE(glued)
-    PERMUTE(anchor) PERMUTE(bridges)
+    PERMUTE(anchor) PERMUTE(bridges) PERMUTE(wall_near)
 #undef PERMUTE
     permute(s->wall_xi, sizeof *s->wall_xi * DEM_MAX_WALLS, old_of, n, tmp);
     permute(s->wall_f, sizeof *s->wall_f * DEM_MAX_WALLS, old_of, n, tmp);
@@ -287,6 +287,17 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
     free(g.start);
     free(g.cell);
     memcpy(s->x_ref, s->x, n * sizeof *s->x);
+    /* the walls each particle can reach before the next build (it moves less than skin/2) */
+#pragma omp parallel for schedule(static)
+    for (size_t k = 0; k < n; k++) {
+        uint8_t near = 0;
+        for (int w = 0; w < s->nwalls; w++) {
+            double nrm[3], c[3];
+            if (dem_wall_geometry(&s->walls[w], s->x[k], s->radius[k] + s->skin, nrm, c) > 0)
+                near |= (uint8_t)(1u << w);
+        }
+        s->wall_near[k] = near;
+    }
     return dem_neighbours_transpose(nl, err);
 }
 

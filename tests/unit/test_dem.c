@@ -20,6 +20,7 @@
 
 #include "assert_close.h"
 #include "cohesion.h"
+#include "contact_force.h"
 #include "dem.h"
 #include "setup.h"
 
