@@ -24,13 +24,14 @@ static const cli_option options[] = {
     {"print-defaults", 0, "TYPE", "print a complete scenario file of TYPE (ringshear, box, "
                                   "pulloff) with every default, and exit"},
     {"quiet", 'q', NULL, "no progress line"},
+    {"list-keys", 0, NULL, "print every scenario key with its unit and meaning (Markdown) and exit"},
 };
 
 typedef struct simulate_args {
     const cli_command *cmd;
     const char *output, *defaults;
     long threads, stop_at;
-    int resume, quiet;
+    int resume, quiet, list_keys;
 } simulate_args;
 
 static int on_option(void *ctx, size_t opt, const char *arg)
@@ -48,7 +49,8 @@ static int on_option(void *ctx, size_t opt, const char *arg)
             return cli_fail(a->cmd, 1, "--stop-at needs a step number >= 1, not '%s'", arg);
         return 0;
     case 4: a->defaults = arg; return 0;
-    default: a->quiet = 1; return 0;
+    case 5: a->quiet = 1; return 0;
+    default: a->list_keys = 1; return 0;
     }
 }
 
@@ -72,6 +74,10 @@ static int run(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse(cmd, argc, argv, on_option, &a, NULL, &first);
     if (rc)
         return rc < 0 ? 0 : rc;
+    if (a.list_keys) {
+        sim_scenario_print_doc(stdout);
+        return 0;
+    }
     if (a.defaults) {
         int type = sim_scenario_type(a.defaults);
         if (type < 0)
