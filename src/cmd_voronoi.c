@@ -39,18 +39,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
         a->tsv = arg;
         return 0;
     }
-    char *text = strdup(arg), *save = NULL;
-    int rc = 0;
-    for (char *tok = strtok_r(text, ",", &save); tok && !rc; tok = strtok_r(NULL, ",", &save)) {
-        long v;
-        if (cli_parse_long(tok, &v) || v < INT32_MIN || v > INT32_MAX || a->ntypes >= 64)
-            rc = cli_fail(a->cmd, 1, "--exclude-types needs a comma list of type numbers, "
-                          "not '%s'", arg);
-        else
-            a->types[a->ntypes++] = (int32_t)v;
-    }
-    free(text);
-    return rc;
+    return cli_parse_types(a->cmd, "exclude-types", arg, a->types, 64, &a->ntypes);
 }
 
 static int reported(const voronoi_args *a, const mimas_particles *p, size_t k)

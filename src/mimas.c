@@ -12,6 +12,8 @@ static const cli_command *const commands[] = {
     &cmd_convert,
     &cmd_average,
     &cmd_voronoi,
+    &cmd_shearband,
+    &cmd_rheology,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 
