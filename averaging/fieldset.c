@@ -310,7 +310,8 @@ int mimas_fieldset_read(const mimas_fieldset *fs, const char *field, double *mea
         count = malloc(cells * sizeof *count);
         rc = !sd || !count;
         /* files without the spread: no standard errors */
-        if (!rc && (read_doubles(one, "std", sd, cells) || read_doubles(one, "count", count, cells)))
+        if (!rc &&
+            (read_doubles(one, "std", sd, cells) || read_doubles(one, "count", count, cells)))
             for (size_t c = 0; c < cells; c++)
                 count[c] = 0;
         for (size_t c = 0; !rc && c < cells; c++)

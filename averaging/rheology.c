@@ -41,7 +41,7 @@ int mimas_rheology_parse_windows(const char *spec, mimas_rheology_window *w, siz
                 hi = NAN;
         }
         if (!isfinite(lo) || !isfinite(hi) || !(hi > lo) || (*end && *end != ',') ||
-            *n >= max)
+            (*end == ',' && !end[1]) || *n >= max)
             return mimas_error_set(err, MIMAS_EUSAGE,
                                    "windows are LO:HI[,LO:HI...] with LO < HI (at most %zu), "
                                    "not '%s'", max, spec);

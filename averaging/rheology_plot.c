@@ -89,8 +89,8 @@ int mimas_rheology_plot(const mimas_rheology *r, const char *prefix, mimas_error
                      "set format x '%%g'\nset format y '%%g'\nset key top right\n");
     for (int k = 0; k < 2; k++) {
         f = k ? &r->eta_I : &r->eta_rate;
-        snprintf(labels, sizeof labels, "set xlabel '%s'\nset ylabel 'eta (Pa s)'\n"
-                 "set title 'eta = k %s^n'\n", k ? "I" : rate, k ? "I" : rate);
+        snprintf(labels, sizeof labels, "set xlabel '%s%s'\nset ylabel 'eta (Pa s)'\n"
+                 "set title 'eta = k %s^n'\n", k ? "I" : rate, k ? "" : " (1/s)", k ? "I" : rate);
         curve[0] = '\0';
         if (f->status == MIMAS_FIT_OK)
             snprintf(curve, sizeof curve, "%.17g*x**%.17g with lines lw 2 lc rgb 'black' "

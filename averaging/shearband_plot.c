@@ -77,7 +77,7 @@ int mimas_band_plot(const mimas_band *b, const char *png, mimas_error *err)
                               "title 'fits'" : "");
     n += snprintf(script + n, sizeof script - (size_t)n,
                   "unset label\nset title 'band centre Rc and edges Rc -+ W'\n"
-                  "set xlabel 'r (m)'\nset ylabel 'z (m)'\nunset colorbox\n");
+                  "set lmargin 14\nset xlabel 'r (m)'\nset ylabel 'z (m)'\nunset colorbox\n");
     if (!nfits)
         snprintf(script + n, sizeof script - (size_t)n,
                  "set label 'no layer could be fitted' at graph 0.3, graph 0.5\n"
