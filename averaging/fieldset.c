@@ -299,22 +299,24 @@ int mimas_fieldset_read(const mimas_fieldset *fs, const char *field, double *mea
         }
         return MIMAS_OK;
     }
+    double *sd = sem ? malloc(cells * sizeof *sd) : NULL;
+    double *count = sem ? malloc(cells * sizeof *count) : NULL;
+    if (sem && (!sd || !count)) {
+        free(sd);
+        free(count);
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    }
     h5_quiet q;
     h5_quiet_begin(&q);
     hid_t g = H5Gopen2(fs->file, "/fields", H5P_DEFAULT);
     hid_t one = g >= 0 ? H5Gopen2(g, field, H5P_DEFAULT) : H5I_INVALID_HID;
     int rc = one < 0 || read_doubles(one, "mean", mean, cells);
-    double *sd = NULL, *count = NULL;
     if (!rc && sem) {
-        sd = malloc(cells * sizeof *sd);
-        count = malloc(cells * sizeof *count);
-        rc = !sd || !count;
         /* files without the spread: no standard errors */
-        if (!rc &&
-            (read_doubles(one, "std", sd, cells) || read_doubles(one, "count", count, cells)))
+        if (read_doubles(one, "std", sd, cells) || read_doubles(one, "count", count, cells))
             for (size_t c = 0; c < cells; c++)
                 count[c] = 0;
-        for (size_t c = 0; !rc && c < cells; c++)
+        for (size_t c = 0; c < cells; c++)
             sem[c] = standard_error(sd[c], count[c]);
     }
     free(sd);

@@ -88,8 +88,8 @@ static int on_option(void *ctx, size_t opt, const char *arg)
 
 /* Raw particle input: average with bins on an r-z grid chosen from the
  * first frame used (said on standard error). */
-static int average_input(const band_args *a, mimas_reader *r, const char *input,
-                         mimas_fieldset **fs, mimas_error *err)
+static int average_input(const band_args *a, const cli_inputs *in, mimas_reader *r,
+                         const char *input, mimas_fieldset **fs, mimas_error *err)
 {
     mimas_average_options o;
     memset(&o, 0, sizeof o);
@@ -102,6 +102,8 @@ static int average_input(const band_args *a, mimas_reader *r, const char *input,
     mimas_average *avg = NULL;
     mimas_frame f;
     mimas_frame_init(&f);
+    cli_progress prog;
+    cli_progress_start(&prog, in);
     while (!status && (status = mimas_reader_next(r, &f, err)) == MIMAS_OK) {
         int take = cli_window_take(&w, &f, input, err);
         if (take < 0)
@@ -121,7 +123,11 @@ static int average_input(const band_args *a, mimas_reader *r, const char *input,
             status = mimas_average_add(avg, &f, err);
         if (status && status != MIMAS_EIO)
             mimas_error_prefix(err, "%s: step %lld", input, (long long)f.step);
+        if (avg)
+            cli_progress_frame(&prog, a->cmd, mimas_average_frames(avg), (long long)f.step,
+                               f.time);
     }
+    cli_progress_done(&prog);
     mimas_frame_free(&f);
     if (status == MIMAS_END && !avg)
         status = mimas_error_set(err, MIMAS_EDATA, "%s: no frame in the selected time range",
@@ -204,7 +210,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
         mimas_reader *r = NULL;
         rc = cli_open_inputs(cmd, &in, argc, argv, first, &r);
         if (!rc)
-            status = average_input(&a, r, argv[first], &fs, &err);
+            status = average_input(&a, &in, r, argv[first], &fs, &err);
         mimas_reader_close(r);
     }
     cli_inputs_free(&in);
