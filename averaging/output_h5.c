@@ -20,22 +20,6 @@ static void dims_of(const mimas_grid *g, int none, hsize_t dims[3])
         dims[2 - d] = none ? 1 : (hsize_t)g->n[d];
 }
 
-static int write_array(hid_t loc, const char *name, int rank, const hsize_t *dims,
-                       const double *data, const char *unit, const char *meaning)
-{
-    hid_t s = H5Screate_simple(rank, dims, NULL);
-    hid_t ds = H5Dcreate2(loc, name, H5T_IEEE_F64LE, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    int rc = ds < 0 || H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0;
-    if (!rc && unit && strcmp(unit, "1") != 0)
-        rc |= h5_attr_write_str(ds, "unit", unit);
-    if (!rc && meaning)
-        rc |= h5_attr_write_str(ds, "definition", meaning);
-    if (ds >= 0)
-        H5Dclose(ds);
-    H5Sclose(s);
-    return rc;
-}
-
 /* Cell-centre positions in Cartesian coordinates (for XDMF), n x 3. */
 static void centres(const mimas_grid *g, int none, size_t cells, double *xyz)
 {
@@ -105,16 +89,16 @@ static int write_grid(hid_t file, const mimas_grid *g, int none, size_t cells)
             return H5Gclose(gg), -1;
         for (hsize_t k = 0; k < len; k++)
             c[k] = g->lo[d] + (g->hi[d] - g->lo[d]) * ((double)k + 0.5) / g->n[d];
-        rc |= write_array(gg, mimas_grid_coord_name(g, d), 1, &len, c,
+        rc |= h5_write_doubles(gg, mimas_grid_coord_name(g, d), 1, &len, c,
                           g->kind == MIMAS_GRID_CYLINDRICAL && d == 1 ? "rad" : "m",
                           g->gridded[d] ? "cell centres" : "cell centre (not gridded)");
         free(c);
     }
     if (g->kind == MIMAS_GRID_CYLINDRICAL && !none) {
         hsize_t six = 3;
-        rc |= write_array(gg, "axis_origin", 1, &six, g->origin, "m", "a point of the axis");
-        rc |= write_array(gg, "axis_direction", 1, &six, g->ez, NULL, "unit vector e_z");
-        rc |= write_array(gg, "axis_phi0", 1, &six, g->ex, NULL, "unit vector e_x (phi = 0)");
+        rc |= h5_write_doubles(gg, "axis_origin", 1, &six, g->origin, "m", "a point of the axis");
+        rc |= h5_write_doubles(gg, "axis_direction", 1, &six, g->ez, NULL, "unit vector e_z");
+        rc |= h5_write_doubles(gg, "axis_phi0", 1, &six, g->ex, NULL, "unit vector e_x (phi = 0)");
     }
     double *xyz = malloc(cells * 3 * sizeof *xyz);
     if (!xyz)
@@ -123,7 +107,7 @@ static int write_grid(hid_t file, const mimas_grid *g, int none, size_t cells)
     hsize_t pd[4];
     dims_of(g, none, pd);
     pd[3] = 3;
-    rc |= write_array(gg, "points", 4, pd, xyz, "m", "cell centres, Cartesian (for XDMF)");
+    rc |= h5_write_doubles(gg, "points", 4, pd, xyz, "m", "cell centres, Cartesian (for XDMF)");
     free(xyz);
     H5Gclose(gg);
     return rc;
@@ -333,7 +317,8 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
             for (int m = 0; m < 3 && !rc; m++) {
                 for (size_t c = 0; c < cells; c++)
                     col[c] = src[m][c * nf + k];
-                rc |= write_array(one, what[m], 3, dims, col, m == 2 ? NULL : fd->unit, desc[m]);
+                rc |= h5_write_doubles(one, what[m], 3, dims, col, m == 2 ? NULL : fd->unit,
+                                       desc[m]);
             }
             if (one >= 0)
                 H5Gclose(one);
@@ -359,7 +344,7 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
                            "Voronoi stresses"
                          : "contact stress sum_c f_ij (x) (r_i - r_j) psi_ij",
                      cyl ? "r, phi, z" : "x, y, z");
-            rc |= gt < 0 || write_array(gt, vor ? "stress" : "cstress", 5, td, full, "Pa", def);
+            rc |= gt < 0 || h5_write_doubles(gt, vor ? "stress" : "cstress", 5, td, full, "Pa", def);
             if (gt >= 0)
                 H5Gclose(gt);
         }

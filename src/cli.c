@@ -261,6 +261,48 @@ int cli_parse_long(const char *s, long *v)
     return 0;
 }
 
+int cli_parse_types(const cli_command *cmd, const char *opt, const char *arg, int32_t *types,
+                    size_t max, size_t *n)
+{
+    char *text = strdup(arg), *save = NULL;
+    if (!text)
+        return cli_fail(cmd, 2, "out of memory");
+    int rc = 0;
+    for (char *tok = strtok_r(text, ",", &save); tok && !rc; tok = strtok_r(NULL, ",", &save)) {
+        long v;
+        if (cli_parse_long(tok, &v) || v < INT32_MIN || v > INT32_MAX || *n >= max)
+            rc = cli_fail(cmd, 1, "--%s needs a comma list of type numbers, not '%s'", opt, arg);
+        else
+            types[(*n)++] = (int32_t)v;
+    }
+    free(text);
+    return rc;
+}
+
+int cli_window_time(const cli_command *cmd, cli_window *w, int from, const char *arg)
+{
+    double t;
+    if (cli_parse_double(arg, &t))
+        return cli_fail(cmd, 1, "--%s needs a time, not '%s'", from ? "from" : "to", arg);
+    if (from)
+        w->from = t, w->has_from = 1;
+    else
+        w->to = t, w->has_to = 1;
+    return 0;
+}
+
+int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mimas_error *err)
+{
+    if ((w->has_from || w->has_to) && isnan(f->time)) {
+        mimas_error_set(err, MIMAS_EUSAGE, "%s: frame at step %lld has no time; give "
+                        "--timestep for --from/--to", input, (long long)f->step);
+        return -1;
+    }
+    if ((w->has_from && f->time < w->from) || (w->has_to && f->time > w->to))
+        return 0;
+    return w->seen++ % (w->every > 1 ? w->every : 1) == 0;
+}
+
 char *cli_command_line(int argc, char **argv)
 {
     size_t len = 16;
@@ -341,5 +383,20 @@ int cli_output_close(cli_output *o, int ok, mimas_error *err)
             remove(o->tmp);
     }
     o->fp = NULL;
+    return rc;
+}
+
+int cli_write_table(const char *path, void (*write)(FILE *fp, const void *ctx), const void *ctx,
+                    mimas_error *err)
+{
+    cli_output o;
+    int rc = cli_output_open(&o, path, err);
+    if (rc)
+        return rc;
+    write(o.fp, ctx);
+    int bad = ferror(o.fp) != 0;
+    rc = cli_output_close(&o, !bad, err);
+    if (bad && !rc)
+        rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", path ? path : "-");
     return rc;
 }

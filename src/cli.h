@@ -81,6 +81,32 @@ int cli_output_open(cli_output *o, const char *path, mimas_error *err);
  * else removes the temporary file.  Returns MIMAS_OK or a write error. */
 int cli_output_close(cli_output *o, int ok, mimas_error *err);
 
+/* A comma list of particle types ("1,3") into types[] (at most max, *n
+ * counts them); on a bad list prints the usage error naming --opt and
+ * returns 1. */
+int cli_parse_types(const cli_command *cmd, const char *opt, const char *arg, int32_t *types,
+                    size_t max, size_t *n);
+
+/* The frames a command uses: --from T0 --to T1 (simulation times) and
+ * --every K of those. */
+typedef struct cli_window {
+    double from, to;
+    int has_from, has_to;
+    long every;   /* 0 or 1: every frame */
+    long seen;    /* frames inside the time window so far */
+} cli_window;
+/* --from (from = 1) or --to TIME into the window; prints the usage error
+ * and returns 1 on a bad time. */
+int cli_window_time(const cli_command *cmd, cli_window *w, int from, const char *arg);
+/* 1 if frame f is used, 0 if not; MIMAS_EUSAGE (negated: -1) with err set
+ * when the window needs a time the frame (of input) does not have. */
+int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mimas_error *err);
+
+/* Writes a whole table with write(fp, ctx) to path (NULL or "-": standard
+ * output) through cli_output: nothing is left at path on failure. */
+int cli_write_table(const char *path, void (*write)(FILE *fp, const void *ctx), const void *ctx,
+                    mimas_error *err);
+
 /* "mimas ARGS..." (malloc'd), for provenance attributes. */
 char *cli_command_line(int argc, char **argv);
 /* Parses a number; returns 0 on success. */

@@ -48,9 +48,10 @@ enum { O_GRID, O_WEIGHT, O_FIELDS, O_AXIS, O_FROM, O_TO, O_EVERY, O_TYPES, O_EXC
 typedef struct average_args {
     const cli_command *cmd;
     const char *grid, *weight, *fields, *axis, *tsv, *output;
-    double from, to, diameter;
-    int has_from, has_to, errors;
-    long every, threads;
+    cli_window window;
+    double diameter;
+    int errors;
+    long threads;
     int32_t types[64];
     size_t ntypes;
     int exclude, types_given, list, per_frame;
@@ -61,18 +62,7 @@ static int parse_types(average_args *a, const char *arg, const char *opt)
     if (a->types_given)
         return cli_fail(a->cmd, 1, "--types and --exclude-types exclude each other");
     a->types_given = 1;
-    char *text = strdup(arg), *save = NULL;
-    int rc = 0;
-    for (char *tok = strtok_r(text, ",", &save); tok && !rc; tok = strtok_r(NULL, ",", &save)) {
-        long v;
-        if (cli_parse_long(tok, &v) || v < INT32_MIN || v > INT32_MAX || a->ntypes >= 64)
-            rc = cli_fail(a->cmd, 1, "--%s needs a comma list of type numbers, not '%s'", opt,
-                          arg);
-        else
-            a->types[a->ntypes++] = (int32_t)v;
-    }
-    free(text);
-    return rc;
+    return cli_parse_types(a->cmd, opt, arg, a->types, 64, &a->ntypes);
 }
 
 static int on_option(void *ctx, size_t opt, const char *arg)
@@ -84,18 +74,9 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_FIELDS: a->fields = arg; return 0;
     case O_AXIS: a->axis = arg; return 0;
     case O_FROM:
-    case O_TO: {
-        double v;
-        if (cli_parse_double(arg, &v))
-            return cli_fail(a->cmd, 1, "--%s needs a time, not '%s'", options[opt].name, arg);
-        if (opt == O_FROM)
-            a->from = v, a->has_from = 1;
-        else
-            a->to = v, a->has_to = 1;
-        return 0;
-    }
+    case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
     case O_EVERY:
-        if (cli_parse_long(arg, &a->every) || a->every < 1)
+        if (cli_parse_long(arg, &a->window.every) || a->window.every < 1)
             return cli_fail(a->cmd, 1, "--every needs a positive whole number, not '%s'", arg);
         return 0;
     case O_TYPES: return parse_types(a, arg, "types");
@@ -239,7 +220,6 @@ static int run(const cli_command *cmd, int argc, char **argv)
 {
     average_args a = {0};
     a.cmd = cmd;
-    a.every = 1;
     cli_inputs in = {0};
     int first;
     int rc = cli_parse(cmd, argc, argv, on_option, &a, &in, &first);
@@ -296,20 +276,16 @@ static int run(const cli_command *cmd, int argc, char **argv)
     }
     mimas_frame f;
     mimas_frame_init(&f);
-    long seen = 0;
     int header_done = 0;
     cli_progress prog;
     cli_progress_start(&prog, &in);
     while (!status && (status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
-        if ((a.has_from || a.has_to) && isnan(f.time)) {
-            status = mimas_error_set(&err, MIMAS_EUSAGE, "%s: frame at step %lld has no time; "
-                                     "give --timestep for --from/--to", argv[first],
-                                     (long long)f.step);
+        int take = cli_window_take(&a.window, &f, argv[first], &err);
+        if (take < 0) {
+            status = MIMAS_EUSAGE;
             break;
         }
-        if ((a.has_from && f.time < a.from) || (a.has_to && f.time > a.to))
-            continue;
-        if (seen++ % a.every)
+        if (!take)
             continue;
         status = mimas_average_add(avg, &f, &err);
         cli_progress_frame(&prog, cmd, mimas_average_frames(avg), (long long)f.step, f.time);

@@ -45,18 +45,7 @@ typedef struct voronoi_args {
 
 static int parse_types(voronoi_args *a, const char *arg)
 {
-    char *text = strdup(arg), *save = NULL;
-    int rc = 0;
-    for (char *tok = strtok_r(text, ",", &save); tok && !rc; tok = strtok_r(NULL, ",", &save)) {
-        long v;
-        if (cli_parse_long(tok, &v) || v < INT32_MIN || v > INT32_MAX || a->o.nexclude >= 64)
-            rc = cli_fail(a->cmd, 1, "--exclude-types needs a comma list of type numbers, "
-                          "not '%s'", arg);
-        else
-            a->types[a->o.nexclude++] = (int32_t)v;
-    }
-    free(text);
-    return rc;
+    return cli_parse_types(a->cmd, "exclude-types", arg, a->types, 64, &a->o.nexclude);
 }
 
 static int positive(voronoi_args *a, size_t opt, const char *arg, double *v)

@@ -191,6 +191,22 @@ int h5_attr_read_strs(hid_t obj, const char *name, char (*values)[16], size_t n)
     return rc;
 }
 
+int h5_write_doubles(hid_t loc, const char *name, int rank, const hsize_t *dims,
+                     const double *data, const char *unit, const char *meaning)
+{
+    hid_t s = H5Screate_simple(rank, dims, NULL);
+    hid_t ds = H5Dcreate2(loc, name, H5T_IEEE_F64LE, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    int rc = ds < 0 || H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0;
+    if (!rc && unit && strcmp(unit, "1") != 0)
+        rc |= h5_attr_write_str(ds, "unit", unit);
+    if (!rc && meaning)
+        rc |= h5_attr_write_str(ds, "definition", meaning);
+    if (ds >= 0)
+        H5Dclose(ds);
+    H5Sclose(s);
+    return rc;
+}
+
 hid_t h5_create_growing(hid_t loc, const char *name, hid_t type, int rank, int n_unlimited,
                         const hsize_t *dims, const hsize_t *chunk, const void *fill,
                         int deflate)

@@ -30,6 +30,11 @@ int h5_attr_read_str(hid_t obj, const char *name, char *buf, size_t len);
 /* Reads a 1-d string-array attribute into fixed-size slots; returns count or -1. */
 int h5_attr_read_strs(hid_t obj, const char *name, char (*values)[16], size_t n);
 
+/* Writes a dataset of doubles of the given rank and dimensions, with the
+ * string attributes unit (unless NULL or "1") and definition (unless NULL). */
+int h5_write_doubles(hid_t loc, const char *name, int rank, const hsize_t *dims,
+                     const double *data, const char *unit, const char *meaning);
+
 /* Creates a chunked dataset of rank `rank` whose leading dimensions marked
  * unlimited start at 0.  dims gives the fixed trailing sizes (leading entries
  * ignored); chunk the chunk shape; fill is the fill value or NULL; deflate the

@@ -2,6 +2,7 @@
  * declarations (src/cmd_*.c); everything else lives in libmimas. */
 #include <config.h>
 
+#include <gsl/gsl_errno.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -13,6 +14,8 @@ static const cli_command *const commands[] = {
     &cmd_average,
     &cmd_voronoi,
     &cmd_simulate,
+    &cmd_shearband,
+    &cmd_rheology,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 
@@ -50,6 +53,9 @@ static const cli_command *find(const char *name)
 
 int main(int argc, char **argv)
 {
+    /* the library checks GSL's return codes (a fit that fails has a status);
+     * GSL's default handler would abort the program instead */
+    gsl_set_error_handler_off();
     if (argc < 2) {
         usage(stderr);
         return 1;

@@ -10,6 +10,10 @@
 #include "reader.h"
 #include "voro_cells.h"
 #include "average.h"
+#include "fieldset.h"
+#include "fit.h"
+#include "shearband.h"
+#include "rheology.h"
 
 #ifdef __cplusplus
 extern "C" {

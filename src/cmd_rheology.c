@@ -1,0 +1,174 @@
+/* mimas rheology: yield line, mu(I), viscosity power laws and windowed
+ * viscosities from a field file (PHYSICS 7, docs/rheology.md). */
+#include <config.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "commands.h"
+#include "fieldset.h"
+#include "rheology.h"
+
+#define MAX_WINDOWS 64
+
+static const cli_option options[] = {
+    {"min-shear-rate", 0, "G", "use the cells whose shear rate exceeds G (1/s; default 0.02)"},
+    {"p-range", 0, "LO:HI", "and whose pressure is within LO:HI (Pa; either may be left out; "
+                            "default 0:)"},
+    {"shear-rate-windows", 0, "LO:HI,...", "shear-rate windows for the mean viscosity (default: "
+                                           "those of 000 Table 4.6)"},
+    {"I-windows", 0, "LO:HI,...", "inertial-number windows for the mean viscosity (default: "
+                                  "those of 000 Table 4.7)"},
+    {"definition", 0, "general|luding", "general: tau, shear_rate (invariants; default); luding: "
+                                        "tau_phi, shear_rate_luding (000, cylindrical grids)"},
+    {"plot", 0, "PREFIX", "draw PREFIX.yield.png, PREFIX.mu_I.png and PREFIX.eta.png (gnuplot)"},
+    {"output", 'o', "FILE", "write the table to FILE (default: standard output)"},
+};
+
+enum { O_MIN_RATE, O_P_RANGE, O_RATE_WINDOWS, O_I_WINDOWS, O_DEFINITION, O_PLOT, O_OUTPUT };
+
+typedef struct rheology_args {
+    const cli_command *cmd;
+    mimas_rheology_options o;
+    mimas_rheology_window rate[MAX_WINDOWS], I[MAX_WINDOWS];
+    const char *plot, *output;
+} rheology_args;
+
+/* "LO:HI", "LO:", ":HI": bounds left out are open. */
+static int parse_range(const char *arg, double *lo, double *hi)
+{
+    const char *colon = strchr(arg, ':');
+    if (!colon)
+        return -1;
+    char a[64], b[64];
+    size_t la = (size_t)(colon - arg), lb = strlen(colon + 1);
+    if (la >= sizeof a || lb >= sizeof b)
+        return -1;
+    memcpy(a, arg, la);
+    a[la] = '\0';
+    memcpy(b, colon + 1, lb + 1);
+    *lo = -INFINITY;
+    *hi = INFINITY;
+    if ((la && cli_parse_double(a, lo)) || (lb && cli_parse_double(b, hi)))
+        return -1;
+    return *hi > *lo ? 0 : -1;
+}
+
+static int on_option(void *ctx, size_t opt, const char *arg)
+{
+    rheology_args *a = ctx;
+    mimas_error err;
+    switch (opt) {
+    case O_MIN_RATE:
+        if (cli_parse_double(arg, &a->o.min_shear_rate) || a->o.min_shear_rate < 0)
+            return cli_fail(a->cmd, 1, "--min-shear-rate needs a rate >= 0, not '%s'", arg);
+        return 0;
+    case O_P_RANGE:
+        if (parse_range(arg, &a->o.p_lo, &a->o.p_hi))
+            return cli_fail(a->cmd, 1, "--p-range needs LO:HI with LO < HI (either may be left "
+                            "out), not '%s'", arg);
+        return 0;
+    case O_RATE_WINDOWS:
+    case O_I_WINDOWS: {
+        int rate = opt == O_RATE_WINDOWS;
+        size_t *n = rate ? &a->o.nrate_windows : &a->o.nI_windows;
+        if (mimas_rheology_parse_windows(arg, rate ? a->rate : a->I, MAX_WINDOWS, n, &err))
+            return cli_fail(a->cmd, 1, "--%s: %s", options[opt].name, err.msg);
+        if (rate)
+            a->o.rate_windows = a->rate;
+        else
+            a->o.I_windows = a->I;
+        return 0;
+    }
+    case O_DEFINITION:
+        if (!strcmp(arg, "general"))
+            a->o.definition = MIMAS_RHEOLOGY_GENERAL;
+        else if (!strcmp(arg, "luding"))
+            a->o.definition = MIMAS_RHEOLOGY_LUDING;
+        else
+            return cli_fail(a->cmd, 1, "--definition is general or luding, not '%s'", arg);
+        return 0;
+    case O_PLOT: a->plot = arg; return 0;
+    case O_OUTPUT: a->output = arg; return 0;
+    }
+    return 1;
+}
+
+static void print_value(FILE *out, double v)
+{
+    if (isnan(v))
+        fputs("\tnan", out);
+    else
+        fprintf(out, "\t%.10g", v);
+}
+
+static void write_table(FILE *out, const void *ctx)
+{
+    const mimas_rheology *r = ctx;
+    fputs("table\tparameter\tvalue\terror\tnpts\tlo\thi\tstatus\n", out);
+    for (size_t k = 0; k < r->nrows; k++) {
+        const mimas_rheology_row *w = &r->rows[k];
+        fprintf(out, "%s\t%s", w->table, w->parameter);
+        print_value(out, w->value);
+        print_value(out, w->error);
+        fprintf(out, "\t%zu", w->npts);
+        print_value(out, w->lo);
+        print_value(out, w->hi);
+        fprintf(out, "\t%s\n", mimas_fit_status_name(w->status));
+    }
+}
+
+static int run(const cli_command *cmd, int argc, char **argv)
+{
+    rheology_args a;
+    memset(&a, 0, sizeof a);
+    a.cmd = cmd;
+    mimas_rheology_options_default(&a.o);
+    int first;
+    int rc = cli_parse(cmd, argc, argv, on_option, &a, NULL, &first);
+    if (!rc && argc - first != 1)
+        rc = cli_fail(cmd, 1, "needs one field file (mimas average -o FIELDS.h5), not %d inputs",
+                      argc - first);
+    if (rc)
+        return rc < 0 ? 0 : rc;
+    mimas_error err;
+    mimas_fieldset *fs = NULL;
+    mimas_rheology *r = NULL;
+    int status = mimas_fieldset_open(&fs, argv[first], &err);
+    if (!status)
+        status = mimas_rheology_analyse(fs, &a.o, &r, &err);
+    mimas_fieldset_close(fs);
+    if (!status && a.plot)
+        status = mimas_rheology_plot(r, a.plot, &err);
+    cli_output table = {0};
+    if (!status)
+        status = cli_output_open(&table, a.output, &err);
+    if (!status)
+        write_table(table.fp, r);
+    int closed = cli_output_close(&table, !status, &err);
+    if (closed && !status)
+        status = closed;
+    mimas_rheology_free(r);
+    if (status)
+        return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
+    return 0;
+}
+
+const cli_command cmd_rheology = {
+    "rheology",
+    "yield line, mu(I), viscosity power laws and windows from a field file",
+    "FIELDS.h5 [options]",
+    "Over the cells of a field file of mimas average whose shear rate exceeds\n"
+    "--min-shear-rate and whose pressure is in --p-range: the yield line\n"
+    "tau = tau0 + zeta p with psi = asin(zeta), the mu(I) law mu = mu_s +\n"
+    "(mu_2 - mu_s)/(1 + I0/I), the power laws eta = k shear_rate^n and\n"
+    "eta = k I^n, and the mean viscosity in windows of shear rate and of I\n"
+    "(PHYSICS 7, 000 Sec. 4.2).  Writes one long table, a row per parameter or\n"
+    "window: table parameter value error npts lo hi status (docs/rheology.md).",
+    options,
+    sizeof options / sizeof options[0],
+    0,
+    run,
+};

@@ -1,0 +1,251 @@
+/* mimas shearband: the shear band's centre and width per height layer
+ * from erf fits of the angular velocity profile (PHYSICS 7, docs/shearband.md). */
+#include <config.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "average.h"
+#include "commands.h"
+#include "fieldset.h"
+#include "reader.h"
+#include "shearband.h"
+
+static const cli_option options[] = {
+    {"omega", 0, "OMEGA", "rotation rate of the cell's moving part (rad/s); the profile is "
+                          "omega(r)/OMEGA (required)"},
+    {"model", 0, "2|4", "2: 0.5 + 0.5 erf((r - Rc)/W) (default); 4: A + B erf((r - Rc)/W)"},
+    {"min-points", 0, "N", "valid radial cells a layer needs for a fit (default 5)"},
+    {"unweighted", 0, NULL, "ignore the standard errors (fit unweighted, errors scaled by the "
+                            "scatter)"},
+    {"fenistein", 0, "RS,H", "add the surface-layer prediction Rc = RS (1 - (H/RS)^2.5) for split "
+                             "radius RS and fill height H"},
+    {"plot", 0, "FILE.png", "draw the profiles with their fits and Rc(z) (gnuplot)"},
+    {"output", 'o', "FILE", "write the table to FILE (default: standard output)"},
+    {"from", 0, "T0", "raw input: first time to average (s)"},
+    {"to", 0, "T1", "raw input: last time to average (s)"},
+    {"exclude-types", 0, "L", "raw input: leave out particles of these types (e.g. glued wall "
+                              "particles)"},
+};
+
+enum { O_OMEGA, O_MODEL, O_MIN, O_UNWEIGHTED, O_FENISTEIN, O_PLOT, O_OUTPUT, O_FROM, O_TO,
+       O_EXCLUDE };
+
+typedef struct band_args {
+    const cli_command *cmd;
+    mimas_band_options o;
+    int has_omega, fenistein;
+    double rs, h;
+    const char *plot, *output;
+    cli_window window;
+    int32_t types[64];
+    size_t ntypes;
+} band_args;
+
+static int on_option(void *ctx, size_t opt, const char *arg)
+{
+    band_args *a = ctx;
+    long v;
+    switch (opt) {
+    case O_OMEGA:
+        if (cli_parse_double(arg, &a->o.omega) || a->o.omega == 0)
+            return cli_fail(a->cmd, 1, "--omega needs a non-zero rate in rad/s, not '%s'", arg);
+        a->has_omega = 1;
+        return 0;
+    case O_MODEL:
+        if (cli_parse_long(arg, &v) || (v != 2 && v != 4))
+            return cli_fail(a->cmd, 1, "--model is 2 or 4, not '%s'", arg);
+        a->o.model = (int)v;
+        return 0;
+    case O_MIN:
+        if (cli_parse_long(arg, &v) || v < 1 || v > 1000000)
+            return cli_fail(a->cmd, 1, "--min-points needs a positive whole number, not '%s'",
+                            arg);
+        a->o.min_points = (size_t)v;
+        return 0;
+    case O_UNWEIGHTED: a->o.unweighted = 1; return 0;
+    case O_FENISTEIN: {
+        char *end;
+        a->rs = strtod(arg, &end);
+        a->h = *end == ',' ? strtod(end + 1, &end) : NAN;
+        if (*end || !(a->rs > 0) || !(a->h > 0) || !isfinite(a->rs) || !isfinite(a->h))
+            return cli_fail(a->cmd, 1, "--fenistein needs RS,H (two positive lengths), not '%s'",
+                            arg);
+        a->fenistein = 1;
+        return 0;
+    }
+    case O_PLOT: a->plot = arg; return 0;
+    case O_OUTPUT: a->output = arg; return 0;
+    case O_FROM:
+    case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
+    case O_EXCLUDE:
+        return cli_parse_types(a->cmd, "exclude-types", arg, a->types, 64, &a->ntypes);
+    }
+    return 1;
+}
+
+/* Raw particle input: average with bins on an r-z grid chosen from the
+ * first frame used (said on standard error). */
+static int average_input(const band_args *a, const cli_inputs *in, mimas_reader *r,
+                         const char *input, mimas_fieldset **fs, mimas_error *err)
+{
+    mimas_average_options o;
+    memset(&o, 0, sizeof o);
+    o.types = a->types;
+    o.ntypes = a->ntypes;
+    o.exclude = 1;
+    o.spread = 1;
+    cli_window w = a->window;
+    int status = mimas_weight_parse(&o.weight, "bins", err);
+    mimas_average *avg = NULL;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    cli_progress prog;
+    cli_progress_start(&prog, in);
+    while (!status && (status = mimas_reader_next(r, &f, err)) == MIMAS_OK) {
+        int take = cli_window_take(&w, &f, input, err);
+        if (take < 0)
+            status = MIMAS_EUSAGE;
+        if (take <= 0)
+            continue;
+        if (!avg) {
+            char spec[512];
+            status = mimas_band_choose_grid(&f, &o.grid, spec, sizeof spec, err);
+            if (!status)
+                status = mimas_average_create(&avg, &o, err);
+            if (!status)
+                fprintf(stderr, "mimas shearband: averaging the particles with --weight bins %s\n",
+                        spec);
+        }
+        if (!status)
+            status = mimas_average_add(avg, &f, err);
+        if (status && status != MIMAS_EIO)
+            mimas_error_prefix(err, "%s: step %lld", input, (long long)f.step);
+        if (avg)
+            cli_progress_frame(&prog, a->cmd, mimas_average_frames(avg), (long long)f.step,
+                               f.time);
+    }
+    cli_progress_done(&prog);
+    mimas_frame_free(&f);
+    if (status == MIMAS_END && !avg)
+        status = mimas_error_set(err, MIMAS_EDATA, "%s: no frame in the selected time range",
+                                 input);
+    if (status == MIMAS_END)
+        status = mimas_fieldset_from_average(fs, avg, input, err);
+    mimas_average_free(avg);
+    return status;
+}
+
+static void print_value(FILE *out, double v)
+{
+    if (isnan(v))
+        fputs("\tnan", out);
+    else
+        fprintf(out, "\t%.10g", v);
+}
+
+typedef struct band_table {
+    const band_args *a;
+    const mimas_band *b;
+} band_table;
+
+static void write_table(FILE *out, const void *ctx)
+{
+    const band_args *a = ((const band_table *)ctx)->a;
+    const mimas_band *b = ((const band_table *)ctx)->b;
+    fputs("z\tRc\tRc_err\tW\tW_err\tchi2\tnpts", out);
+    if (b->model == 4)
+        fputs("\tA\tA_err\tB\tB_err", out);
+    if (a->fenistein)
+        fputs("\tRc_fenistein", out);
+    fputs("\tstatus\n", out);
+    for (size_t k = 0; k < b->nlayers; k++) {
+        const mimas_fit *f = &b->layers[k].fit;
+        fprintf(out, "%.10g", b->layers[k].z);
+        for (int q = MIMAS_BAND_RC; q <= MIMAS_BAND_W; q++) {
+            print_value(out, f->p[q]);
+            print_value(out, f->err[q]);
+        }
+        print_value(out, f->chi2);
+        fprintf(out, "\t%zu", f->npts);
+        for (int q = MIMAS_BAND_A; b->model == 4 && q <= MIMAS_BAND_B; q++) {
+            print_value(out, f->p[q]);
+            print_value(out, f->err[q]);
+        }
+        if (a->fenistein)
+            print_value(out, mimas_band_fenistein_rc(a->rs, a->h));
+        fprintf(out, "\t%s\n", mimas_fit_status_name(f->status));
+    }
+}
+
+static int run(const cli_command *cmd, int argc, char **argv)
+{
+    band_args a;
+    memset(&a, 0, sizeof a);
+    a.cmd = cmd;
+    a.o.model = 2;
+    a.o.min_points = 5;
+    cli_inputs in = {0};
+    int first;
+    int rc = cli_parse(cmd, argc, argv, on_option, &a, &in, &first);
+    if (!rc && !a.has_omega)
+        rc = cli_fail(cmd, 1, "--omega is required (the rotation rate, rad/s)");
+    if (!rc && first >= argc)
+        rc = cli_fail(cmd, 1, "no input file (see mimas shearband --help)");
+    if (!rc && (size_t)a.o.model >= a.o.min_points)
+        rc = cli_fail(cmd, 1, "--min-points must exceed the %d parameters of the model",
+                      a.o.model);
+    mimas_error err;
+    mimas_fieldset *fs = NULL;
+    int status = MIMAS_OK;
+    if (!rc && argc - first == 1 && mimas_fieldset_probe(argv[first])) {
+        if (a.window.has_from || a.window.has_to || a.ntypes)
+            rc = cli_fail(cmd, 1, "--from, --to and --exclude-types apply to particle input, "
+                          "not to a field file");
+        else
+            status = mimas_fieldset_open(&fs, argv[first], &err);
+    } else if (!rc) {
+        mimas_reader *r = NULL;
+        rc = cli_open_inputs(cmd, &in, argc, argv, first, &r);
+        if (!rc)
+            status = average_input(&a, &in, r, argv[first], &fs, &err);
+        mimas_reader_close(r);
+    }
+    cli_inputs_free(&in);
+    if (rc)
+        return rc < 0 ? 0 : rc;
+    mimas_band *b = NULL;
+    if (!status)
+        status = mimas_band_analyse(fs, &a.o, &b, &err);
+    mimas_fieldset_close(fs);
+    if (!status && a.plot)
+        status = mimas_band_plot(b, a.plot, &err);
+    band_table t = {&a, b};
+    if (!status)
+        status = cli_write_table(a.output, write_table, &t, &err);
+    mimas_band_free(b);
+    if (status)
+        return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
+    return 0;
+}
+
+const cli_command cmd_shearband = {
+    "shearband",
+    "shear band centre and width per layer from erf fits of omega(r)",
+    "FIELDS.h5|INPUT... --omega OMEGA [options]",
+    "Fits the angular velocity profile of every height layer of an r-z field\n"
+    "file of mimas average (omega, or v_phi/r) by omega(r)/OMEGA = 0.5 + 0.5\n"
+    "erf((r - Rc)/W) (--model 2) or A + B erf((r - Rc)/W) (--model 4) with GSL's\n"
+    "trust-region least squares, weighted by the standard errors when the file\n"
+    "has them (PHYSICS 7).  Raw particle input is first averaged with bins on an\n"
+    "r-z grid chosen from the data (the grid is said on standard error).  Writes\n"
+    "one row per layer: z Rc Rc_err W W_err chi2 npts [A A_err B B_err]\n"
+    "[Rc_fenistein] status; a layer that could not be fitted has nan values and\n"
+    "the status few_points, no_convergence or undetermined (docs/shearband.md).",
+    options,
+    sizeof options / sizeof options[0],
+    1,
+    run,
+};
