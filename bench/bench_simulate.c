@@ -6,7 +6,9 @@
  * file (--data FILE) for bench/liggghts/run.sh; then --steps shear steps are
  * timed with 1 and 2 threads.  Prints particle-steps per second (wall) and
  * per CPU second.
- *   bench_simulate [--particles N] [--settle T] [--steps S] [--data FILE] */
+ * With --packing FILE the settled packing is read from such a data file
+ * instead (no settling), so both codes start from the same file.
+ *   bench_simulate [--particles N] [--settle T] [--steps S] [--data FILE] [--packing FILE] */
 #include <config.h>
 
 #include <stdio.h>
@@ -59,11 +61,40 @@ static void write_data(const dem_system *s, const char *path)
     fclose(fp);
 }
 
+/* replaces the particles by those of a LAMMPS data file (id type d rho x y z) */
+static long read_packing(dem_system *s, const char *path)
+{
+    FILE *fp = fopen(path, "r");
+    if (!fp) {
+        perror(path);
+        exit(1);
+    }
+    char line[512];
+    int atoms = 0;
+    s->n = 0;
+    mimas_error err;
+    while (fgets(line, sizeof line, fp)) {
+        long long id;
+        int type;
+        double d, rho, x[3];
+        if (!strncmp(line, "Atoms", 5))
+            atoms = 1;
+        else if (atoms && sscanf(line, "%lld %d %lf %lf %lf %lf %lf", &id, &type, &d, &rho, &x[0],
+                                 &x[1], &x[2]) == 7) {
+            if (dem_reserve(s, s->n + 1, &err))
+                exit(1);
+            dem_add_particle(s, 1, d / 2, rho, x);
+        }
+    }
+    fclose(fp);
+    return (long)s->n;
+}
+
 int main(int argc, char **argv)
 {
     long n = 10000, steps = 2000;
     double settle = 0.08;
-    const char *data = NULL;
+    const char *data = NULL, *packing = NULL;
     for (int k = 1; k + 1 < argc; k += 2) {
         if (!strcmp(argv[k], "--particles"))
             n = atol(argv[k + 1]);
@@ -73,6 +104,8 @@ int main(int argc, char **argv)
             settle = atof(argv[k + 1]);
         else if (!strcmp(argv[k], "--data"))
             data = argv[k + 1];
+        else if (!strcmp(argv[k], "--packing"))
+            packing = argv[k + 1];
     }
     sim_scenario sc;
     sim_scenario_defaults(&sc, SIM_RINGSHEAR);
@@ -91,7 +124,17 @@ int main(int argc, char **argv)
     dem_system s;
     dem_init(&s);
     sim_plan plan;
-    if (sim_setup(&s, &sc, &plan, &err) || dem_neighbours_build(&s, &err)) {
+    if (packing) {
+        /* the cell of the packing's size; its particles replace the inserted ones */
+        sc.count = 1;
+        settle = 0;
+        if (sim_setup(&s, &sc, &plan, &err) || (read_packing(&s, packing) < 1) ||
+            dem_configure(&s, &sc, &err)) {
+            fprintf(stderr, "bench_simulate: %s: no packing\n", packing);
+            return 1;
+        }
+    }
+    if ((!packing && sim_setup(&s, &sc, &plan, &err)) || dem_neighbours_build(&s, &err)) {
         fprintf(stderr, "bench_simulate: %s\n", err.msg);
         return 1;
     }

@@ -28,7 +28,6 @@ void dem_free(dem_system *s)
     free(s->wall_delta);
     free(s->nl.start);
     free(s->nl.e);
-    free(s->nl.ef);
     free(s->nl.tstart);
     free(s->nl.tk);
     free(s->nl.tpos);

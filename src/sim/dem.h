@@ -58,12 +58,12 @@ typedef struct dem_nlist {
     size_t n;                /* particles the list was built for */
     size_t *start;           /* n + 1: entries of i are start[i] .. start[i+1]-1 */
     dem_entry *e;
-    dem_entry_force *ef;     /* per entry: on i */
     size_t ne, cap;
     size_t *tstart;          /* transposed: entries where particle j is the second one */
     size_t *tk;              /* entry of each transposed slot */
     size_t *tpos;            /* transposed slot of each entry */
-    dem_entry_force *eft;    /* per transposed slot: on j (so both gathers read in order) */
+    dem_entry_force *eft;    /* per transposed slot: force and torque on j (the force on i
+                                is the negative); written by the pair loop, read in order */
     size_t builds;           /* how many times it was built */
 } dem_nlist;
 

@@ -60,10 +60,12 @@ static void pair_forces(dem_system *s)
     dem_nlist *nl = &s->nl;
     const double dt = s->dt;
 #pragma omp parallel for schedule(dynamic, 128)
-    for (size_t i = 0; i < s->n; i++)
+    for (size_t i = 0; i < s->n; i++) {
+        /* the forces on i are summed here, those on its partners go to their slots */
+        double fi[3] = {0, 0, 0}, ti[3] = {0, 0, 0};
         for (size_t k = nl->start[i]; k < nl->start[i + 1]; k++) {
             dem_entry *e = &nl->e[k];
-            dem_entry_force *ef = &nl->ef[k], *eft = &nl->eft[nl->tpos[k]];
+            dem_entry_force *eft = &nl->eft[nl->tpos[k]];
             size_t j = (size_t)e->j;
             int bridge = (e->flags & DEM_BRIDGE) != 0;
             double d[3], rsum = s->radius[i] + s->radius[j];
@@ -74,7 +76,6 @@ static void pair_forces(dem_system *s)
                     e->flags = 0;
                     memset(e->xi, 0, sizeof e->xi);
                 }
-                memset(ef, 0, sizeof *ef);
                 memset(eft, 0, sizeof *eft);
                 continue;
             }
@@ -103,12 +104,18 @@ static void pair_forces(dem_system *s)
                      s->liquid[j] / (s->bridges[j] > 0 ? s->bridges[j] : 1);
                 e->bridge_volume = vb;
             }
-            dem_contact_force(&s->law[s->type[i]][s->type[j]], &g, dt, e->xi, vb, ef->f,
-                              ef->t, eft->t);
-            for (int q = 0; q < 3; q++)
-                eft->f[q] = -ef->f[q];
+            double f[3], t[3];
+            dem_contact_force(&s->law[s->type[i]][s->type[j]], &g, dt, e->xi, vb, f, t, eft->t);
+            for (int q = 0; q < 3; q++) {
+                eft->f[q] = -f[q];
+                fi[q] += f[q];
+                ti[q] += t[q];
+            }
             e->flags = (delta > 0 ? DEM_TOUCH : 0) | (bridge ? DEM_BRIDGE : 0);
         }
+        memcpy(s->f[i], fi, sizeof fi);
+        memcpy(s->t[i], ti, sizeof ti);
+    }
 }
 
 /* The wall w seen from particle k: overlap, normal (wall -> particle) and the
@@ -208,12 +215,9 @@ void dem_forces(dem_system *s)
     pair_forces(s);
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < s->n; i++) {
-        double f[3] = {0, 0, 0}, t[3] = {0, 0, 0};
-        for (size_t k = nl->start[i]; k < nl->start[i + 1]; k++)
-            for (int q = 0; q < 3; q++) {
-                f[q] += nl->ef[k].f[q];
-                t[q] += nl->ef[k].t[q];
-            }
+        double f[3], t[3];
+        memcpy(f, s->f[i], sizeof f);
+        memcpy(t, s->t[i], sizeof t);
         for (size_t m = nl->tstart[i]; m < nl->tstart[i + 1]; m++) {
             const dem_entry_force *eft = &nl->eft[m];
             for (int q = 0; q < 3; q++) {

@@ -76,7 +76,7 @@ static int fill_contacts(const dem_system *s, mimas_contacts *c, mimas_error *er
                 n[q] = d[q] / dist;
                 /* PHYSICS 2: c = r_i - (R_i - delta/2) n */
                 c->point[row][q] = s->x[i][q] - (s->radius[i] - delta / 2) * n[q];
-                c->force[row][q] = nl->ef[k].f[q];
+                c->force[row][q] = -nl->eft[nl->tpos[k]].f[q];
             }
             split(c->force[row], n, c->force_n[row], c->force_t[row]);
             c->i[row] = i;
