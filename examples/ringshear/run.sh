@@ -31,6 +31,6 @@ grep -E '^(table|yield|mu_I)' "$out/rheology.tsv" || true
 echo
 echo "ring shear example done; in $out/:"
 echo "  run.h5           particles, contacts and wall contacts of every frame (mimas info $out/run.h5)"
-echo "  fields.h5 (.xmf) averaged fields on the r-z grid (ParaView opens fields.xmf); fields.tsv"
+echo "  fields.h5 (.xdmf) averaged fields on the r-z grid (ParaView opens fields.xdmf); fields.tsv"
 echo "  shearband.tsv    band centre Rc and width W per layer;  shearband.png  the profiles and fits"
-echo "  rheology.tsv     yield line, mu(I), viscosity laws;     rheology-*.png  tau(p), mu(I)"
+echo "  rheology.tsv     yield line, mu(I), viscosity laws;  rheology.{yield,mu_I,eta}.png  tau(p), mu(I), eta"

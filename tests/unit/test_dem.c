@@ -107,6 +107,26 @@ static void test_linear_requested_restitution(void **state)
         }
 }
 
+/* coarse graining by alpha (PHYSICS 2.5): k x alpha, gamma x alpha^2, m x alpha^3
+ * keep the restitution and stretch the contact time by alpha (sqrt(m/k)) */
+static void test_coarse_grain_collision(void **state)
+{
+    (void)state;
+    double e[2], t[2], tf;
+    for (int k = 0; k < 2; k++) {
+        sim_scenario sc;
+        load(&sc, k ? "[scenario]\ntype = box\n[run]\ndt = 1e-8\n[contact]\nfriction = 0\n"
+                      "normal_clip = no\n[particles]\ncoarse_grain = 2\n"
+                    : "[scenario]\ntype = box\n[run]\ndt = 1e-8\n[contact]\nfriction = 0\n"
+                      "normal_clip = no\n");
+        sc.diameter *= k ? 2 : 1;   /* collide() uses the diameter as given */
+        collide(&sc, 0.01, &e[k], &t[k], &tf);
+    }
+    print_message("# coarse grain 2: e %.6f -> %.6f, t_c %.6g -> %.6g s\n", e[0], e[1], t[0], t[1]);
+    assert_close(e[1], e[0], 1e-5);
+    assert_close(t[1], 2 * t[0], 2e-8);
+}
+
 /* Hertz (LIGGGHTS form) gives the requested restitution within 2 % */
 static void test_hertz_restitution(void **state)
 {
@@ -442,6 +462,7 @@ int main(void)
         cmocka_unit_test(test_linear_000_check),
         cmocka_unit_test(test_linear_requested_restitution),
         cmocka_unit_test(test_hertz_restitution),
+        cmocka_unit_test(test_coarse_grain_collision),
         cmocka_unit_test(test_elastic_gas_energy),
         cmocka_unit_test(test_incline),
         cmocka_unit_test(test_jkr_minimum),
