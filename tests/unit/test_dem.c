@@ -33,6 +33,19 @@ static void load(sim_scenario *sc, const char *text)
         fail_msg("%s", err.msg);
 }
 
+/* Sets up the scenario's system and its first forces, as mimas simulate does. */
+static void start(dem_system *s, const sim_scenario *sc, sim_plan *plan)
+{
+    mimas_error err;
+    dem_init(s);
+    if (sim_setup(s, sc, plan, &err))
+        fail_msg("%s", err.msg);
+    sim_plan_apply(plan, s);
+    if (dem_neighbours_build(s, &err))
+        fail_msg("%s", err.msg);
+    dem_forces(s);
+}
+
 /* Two particles of the scenario's diameter meeting head-on at relative speed
  * v, just touching at the start; returns the restitution and the time the
  * particles overlap (contact duration) and the time the force is non-zero. */
@@ -187,12 +200,9 @@ static void elastic_gas(int GAS_STEPS, double max_drift)
     sim_scenario sc;
     load(&sc, text);
     dem_system s;
-    dem_init(&s);
     sim_plan plan;
     mimas_error err;
-    assert_int_equal(sim_setup(&s, &sc, &plan, &err), 0);
-    assert_int_equal(dem_neighbours_build(&s, &err), 0);
-    dem_forces(&s);
+    start(&s, &sc, &plan);
     double E0 = energy(&s), worst = 0;
     long collisions = 0;
     size_t nE = 0, capE = 1024;
@@ -263,12 +273,9 @@ static double incline(double tan_theta, double mu, int rotation)
     sim_scenario sc;
     load(&sc, text);
     dem_system s;
-    dem_init(&s);
     sim_plan plan;
     mimas_error err;
-    assert_int_equal(sim_setup(&s, &sc, &plan, &err), 0);
-    assert_int_equal(dem_neighbours_build(&s, &err), 0);
-    dem_forces(&s);
+    start(&s, &sc, &plan);
     double v1 = 0;
     /* the landing and the oscillation of the tangential spring have died
      * out after 0.5 s (damping rate gamma_t/2m = 30/s) */
@@ -365,13 +372,9 @@ static void test_pulloff_willett(void **state)
         sim_scenario sc;
         load(&sc, text);
         dem_system s;
-        dem_init(&s);
         sim_plan plan;
         mimas_error err;
-        assert_int_equal(sim_setup(&s, &sc, &plan, &err), 0);
-        sim_plan_apply(&plan, &s);
-        assert_int_equal(dem_neighbours_build(&s, &err), 0);
-        dem_forces(&s);
+        start(&s, &sc, &plan);
         mimas_bridge b = {VB, 0.072, thetas[a] * M_PI / 180};
         double sc_rupture = mimas_bridge_rupture_distance(&b);
         double dev_sum = 0, F0 = fabs(s.f[0][0]);
@@ -425,12 +428,9 @@ static void test_threads_identical(void **state)
     for (int t = 0; t < 2; t++) {
         omp_set_num_threads(t + 1);
         dem_system s;
-        dem_init(&s);
         sim_plan plan;
         mimas_error err;
-        assert_int_equal(sim_setup(&s, &sc, &plan, &err), 0);
-        assert_int_equal(dem_neighbours_build(&s, &err), 0);
-        dem_forces(&s);
+        start(&s, &sc, &plan);
         for (int k = 0; k < 3000; k++)
             if (dem_step(&s, &err))
                 fail_msg("%s", err.msg);
