@@ -44,8 +44,12 @@ static int parse_cylinder(char *args, mimas_voro_wall *w)
         return -1;
     int at = 1;
     w->inner = 0;
-    if (at < nt && (!strcmp(tok[at], "inner") || !strcmp(tok[at], "outer")))
-        w->inner = !strcmp(tok[at++], "inner");
+    /* "inside" (the spelling: the cylinder inside the packing) = inner */
+    if (at < nt && (!strcmp(tok[at], "inner") || !strcmp(tok[at], "inside") ||
+                    !strcmp(tok[at], "outer"))) {
+        w->inner = strcmp(tok[at], "outer") != 0;
+        at++;
+    }
     w->axis[0] = w->axis[1] = 0.0;
     if (at < nt && (nt - at != 2 || !number(tok[at], &w->axis[0]) ||
                     !number(tok[at + 1], &w->axis[1])))
