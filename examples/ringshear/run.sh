@@ -9,6 +9,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 out=${1:-ringshear-example}
 MIMAS=${MIMAS:-mimas}
 mkdir -p "$out"
+out=$(cd "$out" && pwd)
 # the cell (keep in step with ringshear.ini)
 r_in=0.005 r_split=0.025 r_out=0.035 height=0.012 omega=0.5
 # steady state: the bottom turns from t = 0.25 s; average over t >= 0.75 s
