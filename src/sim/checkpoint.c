@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 static const char magic[8] = {'M', 'I', 'M', 'A', 'S', 'C', 'K', '\n'};
-enum { CHECKPOINT_VERSION = 1 };
+enum { CHECKPOINT_VERSION = 2 };
 
 typedef struct ck_header {
     char magic[8];
@@ -51,6 +51,7 @@ int sim_checkpoint_write(const dem_system *s, const char *path, mimas_error *err
     bad |= put(fp, s->motions, sizeof s->motions);
     bad |= put(fp, s->nl.start, (n + 1) * sizeof *s->nl.start);
     bad |= put(fp, s->nl.e, s->nl.ne * sizeof *s->nl.e);
+    bad |= put(fp, s->nl.bv, s->nl.ne * sizeof *s->nl.bv);
     bad |= put(fp, magic, sizeof magic);   /* end mark */
     bad |= fflush(fp) != 0 || fsync(fileno(fp)) != 0;
     bad |= fclose(fp) != 0;
@@ -92,12 +93,14 @@ int sim_checkpoint_read(dem_system *s, const char *path, mimas_error *err)
     dem_nlist *nl = &s->nl;
     free(nl->start);
     free(nl->e);
+    free(nl->bv);
     nl->start = malloc((n + 1) * sizeof *nl->start);
     nl->e = malloc((h.ne ? h.ne : 1) * sizeof *nl->e);
+    nl->bv = malloc((h.ne ? h.ne : 1) * sizeof *nl->bv);
     nl->n = n;
     nl->ne = h.ne;
     nl->builds = h.builds;
-    if (!nl->start || !nl->e) {
+    if (!nl->start || !nl->e || !nl->bv) {
         fclose(fp);
         return mimas_error_set(err, MIMAS_EIO, "out of memory reading %s", path);
     }
@@ -112,6 +115,7 @@ int sim_checkpoint_read(dem_system *s, const char *path, mimas_error *err)
     bad |= get(fp, s->motions, sizeof s->motions);
     bad |= get(fp, nl->start, (n + 1) * sizeof *nl->start);
     bad |= get(fp, nl->e, h.ne * sizeof *nl->e);
+    bad |= get(fp, nl->bv, h.ne * sizeof *nl->bv);
     char end[8];
     bad |= get(fp, end, sizeof end) || memcmp(end, magic, sizeof magic) != 0;
     fclose(fp);

@@ -28,6 +28,7 @@ void dem_free(dem_system *s)
     free(s->wall_delta);
     free(s->nl.start);
     free(s->nl.e);
+    free(s->nl.bv);
     free(s->nl.tstart);
     free(s->nl.tk);
     free(s->nl.tpos);

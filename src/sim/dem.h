@@ -46,8 +46,7 @@ typedef struct dem_entry {
     int32_t j;
     int32_t flags;           /* DEM_TOUCH while overlapping, DEM_BRIDGE while a bridge exists */
     double xi[3];            /* tangential spring of i relative to j (PHYSICS 2.3) */
-    double bridge_volume;    /* V_B of the bridge (PHYSICS 2.4), 0 without one */
-} dem_entry;
+} dem_entry;                 /* 32 bytes: two per cache line */
 
 /* What one entry contributes to one of its particles: force and torque. */
 typedef struct dem_entry_force {
@@ -58,6 +57,7 @@ typedef struct dem_nlist {
     size_t n;                /* particles the list was built for */
     size_t *start;           /* n + 1: entries of i are start[i] .. start[i+1]-1 */
     dem_entry *e;
+    double *bv;              /* per entry: V_B of its liquid bridge (PHYSICS 2.4), 0 without */
     size_t ne, cap;
     size_t *tstart;          /* transposed: entries where particle j is the second one */
     size_t *tk;              /* entry of each transposed slot */

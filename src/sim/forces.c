@@ -34,14 +34,14 @@ static void update_bridges(dem_system *s)
             int on = delta >= 0;
             if (!on && (e->flags & DEM_BRIDGE)) {
                 const dem_law *L = &s->law[s->type[i]][s->type[e->j]];
-                mimas_bridge b = {e->bridge_volume, L->surface_tension, L->contact_angle};
+                mimas_bridge b = {nl->bv[k], L->surface_tension, L->contact_angle};
                 on = -delta <= mimas_bridge_rupture_distance(&b);
             }
             if (on)
                 e->flags |= DEM_BRIDGE;
             else {
                 e->flags &= ~DEM_BRIDGE;
-                e->bridge_volume = 0;
+                nl->bv[k] = 0;
             }
         }
 #pragma omp parallel for schedule(static)
@@ -102,7 +102,7 @@ static void pair_forces(dem_system *s)
                 /* the liquid of each particle is shared equally by its bridges */
                 vb = s->liquid[i] / (s->bridges[i] > 0 ? s->bridges[i] : 1) +
                      s->liquid[j] / (s->bridges[j] > 0 ? s->bridges[j] : 1);
-                e->bridge_volume = vb;
+                nl->bv[k] = vb;
             }
             double f[3], t[3];
             dem_contact_force(&s->law[s->type[i]][s->type[j]], &g, dt, e->xi, vb, f, t, eft->t);

@@ -163,23 +163,28 @@ static int sort_by_cell(dem_system *s, cell_grid *g, size_t *old_of, mimas_error
 }
 
 /* The history of pair (oi, oj) (old indices) in the old list, oriented as i
- * relative to j; a zero entry if the pair was not listed. */
-static dem_entry old_history(const size_t *ostart, const dem_entry *oe, size_t oi, size_t oj)
+ * relative to j, into *h and *bv; zero if the pair was not listed. */
+static void old_history(const size_t *ostart, const dem_entry *oe, const double *obv, size_t oi,
+                        size_t oj, dem_entry *h, double *bv)
 {
-    dem_entry h = {0};
+    *h = (dem_entry){0};
+    *bv = 0;
     if (!ostart)
-        return h;
+        return;
     for (size_t k = ostart[oi]; k < ostart[oi + 1]; k++)
-        if ((size_t)oe[k].j == oj)
-            return oe[k];
+        if ((size_t)oe[k].j == oj) {
+            *h = oe[k];
+            *bv = obv[k];
+            return;
+        }
     for (size_t k = ostart[oj]; k < ostart[oj + 1]; k++)
         if ((size_t)oe[k].j == oi) {
-            h = oe[k];
+            *h = oe[k];
+            *bv = obv[k];
             for (int d = 0; d < 3; d++)
-                h.xi[d] = -h.xi[d];
-            return h;
+                h->xi[d] = -h->xi[d];
+            return;
         }
-    return h;
 }
 
 typedef struct build_ctx {
@@ -188,6 +193,7 @@ typedef struct build_ctx {
     double extra;             /* skin + bridge range */
     const size_t *ostart, *old_of;
     const dem_entry *oe;
+    const double *obv;
 } build_ctx;
 
 static int pair_listed(const build_ctx *b, size_t i, size_t j)
@@ -201,8 +207,9 @@ static int pair_listed(const build_ctx *b, size_t i, size_t j)
     return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cut * cut;
 }
 
-/* Visits the partners of i: counts them (out == NULL) or writes the entries. */
-static size_t visit(const build_ctx *b, size_t i, dem_entry *out)
+/* Visits the partners of i: counts them (out == NULL) or writes the entries
+ * and their bridge volumes. */
+static size_t visit(const build_ctx *b, size_t i, dem_entry *out, double *bv)
 {
     const cell_grid *g = b->g;
     size_t c = g->cell[i], found = 0;
@@ -229,9 +236,9 @@ static size_t visit(const build_ctx *b, size_t i, dem_entry *out)
             if (!pair_listed(b, i, j))
                 continue;
             if (out) {
-                dem_entry e = old_history(b->ostart, b->oe, b->old_of[i], b->old_of[j]);
-                e.j = (int32_t)j;
-                out[found] = e;
+                old_history(b->ostart, b->oe, b->obv, b->old_of[i], b->old_of[j], &out[found],
+                            &bv[found]);
+                out[found].j = (int32_t)j;
             }
             found++;
         }
@@ -268,16 +275,19 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
         return rc;
     }
     /* old list (in old indices) stays until the history has moved over */
-    build_ctx b = {s, &g, extra, nl->n == n ? nl->start : NULL, old_of, nl->e};
+    build_ctx b = {s, &g, extra, nl->n == n ? nl->start : NULL, old_of, nl->e, nl->bv};
     start[0] = 0;
 #pragma omp parallel for schedule(dynamic, 256)
     for (size_t i = 0; i < n; i++)
-        start[i + 1] = visit(&b, i, NULL);
+        start[i + 1] = visit(&b, i, NULL, NULL);
     for (size_t i = 0; i < n; i++)
         start[i + 1] += start[i];
     size_t ne = start[n];
     dem_entry *e = malloc((ne ? ne : 1) * sizeof *e);
-    if (!e) {
+    double *bv = malloc((ne ? ne : 1) * sizeof *bv);
+    if (!e || !bv) {
+        free(e);
+        free(bv);
         free(old_of);
         free(start);
         free(g.start);
@@ -286,12 +296,14 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
     }
 #pragma omp parallel for schedule(dynamic, 256)
     for (size_t i = 0; i < n; i++)
-        visit(&b, i, e + start[i]);
+        visit(&b, i, e + start[i], bv + start[i]);
     free(nl->start);
     free(nl->e);
+    free(nl->bv);
     nl->n = n;
     nl->start = start;
     nl->e = e;
+    nl->bv = bv;
     nl->ne = ne;
     nl->builds++;
     free(old_of);

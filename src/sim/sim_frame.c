@@ -83,7 +83,7 @@ static int fill_contacts(const dem_system *s, mimas_contacts *c, mimas_error *er
             c->j[row] = j;
             c->overlap[row] = delta;
             if (s->bridges_on)
-                c->extra[vb_col].data[row] = e->bridge_volume;
+                c->extra[vb_col].data[row] = nl->bv[k];
             row++;
         }
     return MIMAS_OK;
