@@ -542,7 +542,7 @@ static int contact_row(merc_state *s, mimas_frame *f, char *line, mimas_error *e
                           "a unit vector", v[13], v[14], v[15]);
     if (!f)
         return MIMAS_OK;
-    size_t i, j;
+    size_t i = 0, j = 0;   /* set by row_index; initialised for -O3's flow analysis */
     int rc = row_index(s, f, v[1], "particle index i", &i, err);
     if (rc)
         return rc;

@@ -24,7 +24,7 @@ static inline void dem_cross(const double a[3], const double b[3], double c[3])
  * bridge_volume > 0 if a liquid bridge acts (then the attraction acts also
  * across a gap).  Writes the force on i, the torques on i and j and returns
  * the repulsive normal force. */
-static inline double dem_contact_force(const dem_law *L, const dem_contact_geom *g, double dt,
+static inline __attribute__((always_inline)) double dem_contact_force(const dem_law *L, const dem_contact_geom *g, double dt,
                          double xi[3], double bridge_volume, double f[3], double ti[3],
                          double tj[3])
 {
