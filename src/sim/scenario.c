@@ -86,7 +86,7 @@ static const key_desc keys[] = {
     {"contact", "rolling_friction", K_REAL, CP(rolling_friction), 0, BIG, NULL, "m",
      "rolling friction length mu_r (PHYSICS 2.3)", S_ALL},
     {"contact", "cohesion_energy", K_REAL, CP(cohesion_energy), 0, BIG, NULL, "J m-2",
-     "JKR-type surface energy w (PHYSICS 2.4); needs youngs_modulus", S_ALL},
+     "JKR-type cohesion: work of adhesion w = twice the surface energy (002 eq. 2.4, PHYSICS 2.4); needs youngs_modulus", S_ALL},
     {"contact", "surface_tension", K_REAL, CP(surface_tension), 0, BIG, NULL, "N m-1",
      "surface tension of the liquid bridges", S_ALL},
     {"contact", "contact_angle", K_REAL, CP(contact_angle), 0, 90, 0, NULL, "deg",

@@ -26,7 +26,7 @@ typedef struct sim_contact_params {
     double youngs_modulus, poisson;
     double friction;           /* Coulomb mu */
     double rolling_friction;   /* mu_r, a length (m) */
-    double cohesion_energy;    /* JKR surface energy w, J/m^2 */
+    double cohesion_energy;    /* JKR work of adhesion w (twice the surface energy), J/m^2 */
     double surface_tension;    /* liquid bridges, N/m */
     double contact_angle;      /* degrees */
 } sim_contact_params;
