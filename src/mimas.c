@@ -24,8 +24,9 @@ static void usage(FILE *out)
     fprintf(out,
             "Usage: mimas COMMAND [options] INPUT...\n"
             "       mimas help [COMMAND] | mimas --version\n\n"
-            "mimas turns particle and contact data of granular (DEM) simulations into\n"
-            "continuum fields and the analyses built on them.\n\nCommands:\n");
+            "mimas runs granular (DEM) simulations and turns their particle and contact\n"
+            "data (or LIGGGHTS, LAMMPS and MercuryDPM output) into continuum fields and\n"
+            "the analyses built on them.\n\nCommands:\n");
     for (size_t k = 0; k < NCOMMANDS; k++)
         fprintf(out, "  %-12s %s\n", commands[k]->name, commands[k]->summary);
     fprintf(out, "\n'mimas COMMAND --help' describes a command's options.\n");
