@@ -261,6 +261,15 @@ int cli_parse_long(const char *s, long *v)
     return 0;
 }
 
+int cli_parse_threads(const cli_command *cmd, const char *arg, int *threads)
+{
+    long v;
+    if (cli_parse_long(arg, &v) || v < 1 || v > 1024)
+        return cli_fail(cmd, 1, "--threads needs a number from 1 to 1024, not '%s'", arg);
+    *threads = (int)v;
+    return 0;
+}
+
 int cli_parse_types(const cli_command *cmd, const char *opt, const char *arg, int32_t *types,
                     size_t max, size_t *n)
 {

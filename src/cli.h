@@ -112,5 +112,7 @@ char *cli_command_line(int argc, char **argv);
 /* Parses a number; returns 0 on success. */
 int cli_parse_double(const char *s, double *v);
 int cli_parse_long(const char *s, long *v);
+/* --threads N (1..1024) into *threads; prints the usage error and returns 1 otherwise. */
+int cli_parse_threads(const cli_command *cmd, const char *arg, int *threads);
 
 #endif

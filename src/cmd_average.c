@@ -51,7 +51,7 @@ typedef struct average_args {
     cli_window window;
     double diameter;
     int errors;
-    long threads;
+    int threads;
     int32_t types[64];
     size_t ntypes;
     int exclude, types_given, list, per_frame;
@@ -90,10 +90,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
             return cli_fail(a->cmd, 1, "--diameter needs a positive length, not '%s'", arg);
         return 0;
     case O_LIST: a->list = 1; return 0;
-    case O_THREADS:
-        if (cli_parse_long(arg, &a->threads) || a->threads < 1 || a->threads > 1024)
-            return cli_fail(a->cmd, 1, "--threads needs a number from 1 to 1024, not '%s'", arg);
-        return 0;
+    case O_THREADS: return cli_parse_threads(a->cmd, arg, &a->threads);
     }
     return 1;
 }
@@ -241,7 +238,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     o.ntypes = a.ntypes;
     o.exclude = a.exclude;
     o.spread = a.errors || a.output; /* the HDF5 file always has the spread */
-    o.threads = (int)a.threads;
+    o.threads = a.threads;
     o.diameter = a.diameter;
     int cyl = o.grid.kind == MIMAS_GRID_CYLINDRICAL && !o.grid_none;
     unsigned char want[128];

@@ -30,7 +30,8 @@ static const cli_option options[] = {
 typedef struct simulate_args {
     const cli_command *cmd;
     const char *output, *defaults;
-    long threads, stop_at;
+    int threads;
+    long stop_at;
     int resume, quiet, list_keys;
 } simulate_args;
 
@@ -39,10 +40,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     simulate_args *a = ctx;
     switch (opt) {
     case 0: a->output = arg; return 0;
-    case 1:
-        if (cli_parse_long(arg, &a->threads) || a->threads < 1 || a->threads > 1024)
-            return cli_fail(a->cmd, 1, "--threads needs a number from 1 to 1024, not '%s'", arg);
-        return 0;
+    case 1: return cli_parse_threads(a->cmd, arg, &a->threads);
     case 2: a->resume = 1; return 0;
     case 3:
         if (cli_parse_long(arg, &a->stop_at) || a->stop_at < 1)
@@ -94,7 +92,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
         return cli_fail(cmd, 1, "needs -o RUN.h5");
 #ifdef _OPENMP
     if (a.threads > 0)
-        omp_set_num_threads((int)a.threads);
+        omp_set_num_threads(a.threads);
 #endif
     mimas_error err;
     sim_scenario sc;

@@ -60,7 +60,6 @@ static int on_option(void *ctx, size_t opt, const char *arg)
 {
     voronoi_args *a = ctx;
     mimas_error err;
-    long threads;
     switch (opt) {
     case O_RADICAL: a->o.radical = 1; return 0;
     case O_WALLS:
@@ -72,11 +71,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_EXCLUDE: return parse_types(a, arg);
     case O_OUTPUT: a->output = arg; return 0;
     case O_TSV: a->tsv = arg; return 0;
-    case O_THREADS:
-        if (cli_parse_long(arg, &threads) || threads < 1 || threads > 1024)
-            return cli_fail(a->cmd, 1, "--threads needs a number from 1 to 1024, not '%s'", arg);
-        a->o.threads = (int)threads;
-        return 0;
+    case O_THREADS: return cli_parse_threads(a->cmd, arg, &a->o.threads);
     }
     return 1;
 }

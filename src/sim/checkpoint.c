@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 static const char magic[8] = {'M', 'I', 'M', 'A', 'S', 'C', 'K', '\n'};
-enum { CHECKPOINT_VERSION = 2 };
+enum { CHECKPOINT_VERSION = 3 };
 
 typedef struct ck_header {
     char magic[8];

@@ -35,6 +35,7 @@ typedef struct dem_wall {
 typedef struct dem_motion {
     double omega, axis[2], velocity[3];
     double angle, shift[3];  /* turned and moved so far */
+    double cos_angle, sin_angle;   /* of angle, once per step for all its particles */
 } dem_motion;
 #define DEM_MAX_MOTIONS 4
 

@@ -174,12 +174,9 @@ static void wall_forces(dem_system *s, size_t i, double f[3], double t[3])
         dem_contact_geom g;
         double c[3], vw[3];
         g.delta = dem_wall_geometry(w, s->x[i], s->radius[i], g.n, c);
-        if (g.delta <= 0) {
-            if (s->wall_delta[slot] != 0 || s->wall_xi[slot][0] != 0 || s->wall_xi[slot][1] != 0 ||
-                s->wall_xi[slot][2] != 0) {
-                memset(s->wall_xi[slot], 0, sizeof s->wall_xi[slot]);
-                memset(s->wall_f[slot], 0, sizeof s->wall_f[slot]);
-            }
+        if (g.delta <= 0) {   /* no contact: no history, nothing to output */
+            memset(s->wall_xi[slot], 0, sizeof s->wall_xi[slot]);
+            memset(s->wall_f[slot], 0, sizeof s->wall_f[slot]);
             s->wall_delta[slot] = 0;
             continue;
         }

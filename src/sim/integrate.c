@@ -27,6 +27,8 @@ static void drift(dem_system *s)
     for (int m = 0; m < s->nmotions; m++) {
         dem_motion *mo = &s->motions[m];
         mo->angle += mo->omega * dt;
+        mo->cos_angle = cos(mo->angle);
+        mo->sin_angle = sin(mo->angle);
         for (int q = 0; q < 3; q++)
             mo->shift[q] += mo->velocity[q] * dt;
     }
@@ -38,7 +40,7 @@ static void drift(dem_system *s)
             continue;
         }
         const dem_motion *mo = &s->motions[s->glued[k]];
-        double c = cos(mo->angle), sn = sin(mo->angle);
+        double c = mo->cos_angle, sn = mo->sin_angle;
         double ax = s->anchor[k][0] - mo->axis[0], ay = s->anchor[k][1] - mo->axis[1];
         double rx = c * ax - sn * ay, ry = sn * ax + c * ay;
         s->x[k][0] = mo->axis[0] + rx + mo->shift[0];

@@ -246,10 +246,25 @@ static size_t visit(const build_ctx *b, size_t i, dem_entry *out, double *bv)
     return found;
 }
 
+/* The walls each particle can reach before the next build (it moves less than skin/2). */
+static void mark_walls_near(dem_system *s)
+{
+#pragma omp parallel for schedule(static)
+    for (size_t k = 0; k < s->n; k++) {
+        uint8_t near = 0;
+        for (int w = 0; w < s->nwalls; w++) {
+            double nrm[3], c[3];
+            if (dem_wall_geometry(&s->walls[w], s->x[k], s->radius[k] + s->skin, nrm, c) > 0)
+                near |= (uint8_t)(1u << w);
+        }
+        s->wall_near[k] = near;
+    }
+}
+
 int dem_neighbours_build(dem_system *s, mimas_error *err)
 {
     dem_nlist *nl = &s->nl;
-    size_t n = s->n;
+    size_t n = s->n, ne = 0;
     double dmax = 0;
     for (size_t k = 0; k < n; k++)
         if (2 * s->radius[k] > dmax)
@@ -259,44 +274,42 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
     cell_grid g = {0};
     size_t *old_of = malloc((n ? n : 1) * sizeof *old_of);
     size_t *start = malloc((n + 1) * sizeof *start);
-    if (!old_of || !start) {
-        free(old_of);
-        free(start);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory for the neighbour list");
-    }
-    int rc = make_grid(s, dmax + extra, &g, err);
+    dem_entry *e = NULL;
+    double *bv = NULL;
+    int rc = !old_of || !start ? mimas_error_set(err, MIMAS_EIO, "out of memory for the "
+                                                 "neighbour list")
+                               : make_grid(s, dmax + extra, &g, err);
     if (!rc)
         rc = sort_by_cell(s, &g, old_of, err);
-    if (rc) {
-        free(old_of);
-        free(start);
-        free(g.start);
-        free(g.cell);
-        return rc;
-    }
-    /* old list (in old indices) stays until the history has moved over */
-    build_ctx b = {s, &g, extra, nl->n == n ? nl->start : NULL, old_of, nl->e, nl->bv};
-    start[0] = 0;
+    if (!rc) {
+        /* the old list (in old indices) stays until the history has moved over */
+        build_ctx b = {s, &g, extra, nl->n == n ? nl->start : NULL, old_of, nl->e, nl->bv};
+        start[0] = 0;
 #pragma omp parallel for schedule(dynamic, 256)
-    for (size_t i = 0; i < n; i++)
-        start[i + 1] = visit(&b, i, NULL, NULL);
-    for (size_t i = 0; i < n; i++)
-        start[i + 1] += start[i];
-    size_t ne = start[n];
-    dem_entry *e = malloc((ne ? ne : 1) * sizeof *e);
-    double *bv = malloc((ne ? ne : 1) * sizeof *bv);
-    if (!e || !bv) {
+        for (size_t i = 0; i < n; i++)
+            start[i + 1] = visit(&b, i, NULL, NULL);
+        for (size_t i = 0; i < n; i++)
+            start[i + 1] += start[i];
+        ne = start[n];
+        e = malloc((ne ? ne : 1) * sizeof *e);
+        bv = malloc((ne ? ne : 1) * sizeof *bv);
+        if (!e || !bv)
+            rc = mimas_error_set(err, MIMAS_EIO, "out of memory for %zu neighbour pairs", ne);
+        else {
+#pragma omp parallel for schedule(dynamic, 256)
+            for (size_t i = 0; i < n; i++)
+                visit(&b, i, e + start[i], bv + start[i]);
+        }
+    }
+    free(old_of);
+    free(g.start);
+    free(g.cell);
+    if (rc) {
+        free(start);
         free(e);
         free(bv);
-        free(old_of);
-        free(start);
-        free(g.start);
-        free(g.cell);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory for %zu neighbour pairs", ne);
+        return rc;
     }
-#pragma omp parallel for schedule(dynamic, 256)
-    for (size_t i = 0; i < n; i++)
-        visit(&b, i, e + start[i], bv + start[i]);
     free(nl->start);
     free(nl->e);
     free(nl->bv);
@@ -306,21 +319,8 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
     nl->bv = bv;
     nl->ne = ne;
     nl->builds++;
-    free(old_of);
-    free(g.start);
-    free(g.cell);
     memcpy(s->x_ref, s->x, n * sizeof *s->x);
-    /* the walls each particle can reach before the next build (it moves less than skin/2) */
-#pragma omp parallel for schedule(static)
-    for (size_t k = 0; k < n; k++) {
-        uint8_t near = 0;
-        for (int w = 0; w < s->nwalls; w++) {
-            double nrm[3], c[3];
-            if (dem_wall_geometry(&s->walls[w], s->x[k], s->radius[k] + s->skin, nrm, c) > 0)
-                near |= (uint8_t)(1u << w);
-        }
-        s->wall_near[k] = near;
-    }
+    mark_walls_near(s);
     return dem_neighbours_transpose(nl, err);
 }
 

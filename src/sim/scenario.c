@@ -5,6 +5,7 @@
 #include "scenario.h"
 
 #include <ini.h>
+#include <stdarg.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -209,10 +210,16 @@ typedef struct parse_ctx {
     int failed;
 } parse_ctx;
 
-static int fail(parse_ctx *c, const char *fmt, const char *a, const char *b, const char *d)
+/* Records the first error of the file (inih goes on and reports its line). */
+static int fail(parse_ctx *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static int fail(parse_ctx *c, const char *fmt, ...)
 {
-    if (!c->failed)
-        snprintf(c->msg, sizeof c->msg, fmt, a, b, d);
+    if (!c->failed) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(c->msg, sizeof c->msg, fmt, ap);
+        va_end(ap);
+    }
     c->failed = 1;
     return 0;
 }
@@ -313,8 +320,8 @@ static int handler(void *user, const char *section, const char *name, const char
         if (strcmp(section, "scenario") == 0 && strcmp(name, "type") == 0) {
             int t = sim_scenario_type(value);
             if (t < 0)
-                return fail(c, "[scenario] type must be ringshear, box or pulloff, not '%s'%s%s",
-                            value, "", "");
+                return fail(c, "[scenario] type must be ringshear, box or pulloff, not '%s'",
+                            value);
             c->found_type = t;
         }
         return 1;
@@ -322,7 +329,7 @@ static int handler(void *user, const char *section, const char *name, const char
     int a = -1, b = -1, cs = contact_section(section, &a, &b);
     if (cs < 0)
         return fail(c, "bad section [%s]: use [contact], [contact A-B] or [contact wall-B] "
-                       "with types 1..3%s%s", section, "", "");
+                       "with types 1..3", section);
     const char *sec = cs ? "contact" : section;
     const key_desc *k = NULL;
     int section_known = 0;
@@ -334,9 +341,9 @@ static int handler(void *user, const char *section, const char *name, const char
             k = &keys[m];
     }
     if (!section_known)
-        return fail(c, "unknown section [%s]%s%s", section, "", "");
+        return fail(c, "unknown section [%s]", section);
     if (!k)
-        return fail(c, "unknown key '%s' in [%s]%s", name, section, "");
+        return fail(c, "unknown key '%s' in [%s]", name, section);
     if (!(k->scenarios & (1 << c->s->type)))
         return fail(c, "key '%s' of [%s] does not apply to scenario %s", name, section,
                     type_names[c->s->type]);
@@ -363,7 +370,7 @@ static int handler(void *user, const char *section, const char *name, const char
     } else {
         override *grown = realloc(c->ov, (c->nov + 1) * sizeof *grown);
         if (!grown)
-            return fail(c, "out of memory%s%s%s", "", "", "");
+            return fail(c, "out of memory");
         c->ov = grown;
         c->ov[c->nov++] = (override){a, b, k, v};
     }
