@@ -295,6 +295,7 @@ void mimas_frame_free(mimas_frame *f)
     mimas_table_free(&f->particles, &mimas_particles_desc);
     mimas_table_free(&f->contacts, &mimas_contacts_desc);
     mimas_table_free(&f->walls, &mimas_walls_desc);
+    mimas_gas_free(&f->gas);
 }
 
 void mimas_frame_clear(mimas_frame *f)
@@ -306,6 +307,48 @@ void mimas_frame_clear(mimas_frame *f)
     f->time = 0.0;
     f->has_contacts = f->has_walls = 0;
     memset(&f->box, 0, sizeof f->box);
+    memset(&f->tube, 0, sizeof f->tube);
+    f->gas.present = 0;
+}
+
+/* ---- gas grid ---- */
+size_t mimas_gas_cells(const mimas_gas *g)
+{
+    return g->present ? g->cells[0] * g->cells[1] * g->cells[2] : 0;
+}
+
+int mimas_gas_resize(mimas_gas *g, size_t nx, size_t ny, size_t nz, mimas_error *err)
+{
+    if (nx == 0 || ny == 0 || nz == 0 || nx > SIZE_MAX / ny || nx * ny > SIZE_MAX / nz ||
+        nx * ny * nz > SIZE_MAX / (3 * sizeof(double)))
+        return mimas_error_set(err, MIMAS_EDATA, "gas grid of %zu x %zu x %zu cells", nx, ny,
+                               nz);
+    size_t n = nx * ny * nz;
+    if (n > g->cap) {
+        double *p = realloc(g->pressure, n * sizeof *p);
+        if (p)
+            g->pressure = p;
+        double *q = p ? realloc(g->porosity, n * sizeof *q) : NULL;
+        if (q)
+            g->porosity = q;
+        double(*v)[3] = q ? realloc(g->velocity, n * sizeof *v) : NULL;
+        if (!v)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for a gas grid of %zu cells",
+                                   n);
+        g->velocity = v;
+        g->cap = n;
+    }
+    g->cells[0] = nx, g->cells[1] = ny, g->cells[2] = nz;
+    g->present = 1;
+    return MIMAS_OK;
+}
+
+void mimas_gas_free(mimas_gas *g)
+{
+    free(g->pressure);
+    free(g->porosity);
+    free(g->velocity);
+    memset(g, 0, sizeof *g);
 }
 
 /* ---- box ---- */

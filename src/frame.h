@@ -141,6 +141,39 @@ void mimas_box_edges(const mimas_box *b, double e[3][3]);
  * in fractional coordinates). */
 void mimas_box_min_image(const mimas_box *b, double d[3]);
 
+/* ---- tube geometry (tube-flow runs: plug conveying) ---- */
+/* The tube a run flows through, as the native file records it (attributes of
+ * /parameters/tube, docs/format.md) so that the tube analyses (mimas plugs,
+ * radial) need no geometry options.  Axial coordinate s = (x - origin) .
+ * direction, from 0 at the inlet to length at the outlet; radius r from the
+ * axis. */
+typedef struct mimas_tube {
+    int present;             /* 0: the input does not say */
+    double origin[3];        /* the axis point at the inlet (s = 0), m */
+    double direction[3];     /* unit vector along the axis, inlet to outlet */
+    double radius;           /* inner radius, m */
+    double length;           /* m */
+} mimas_tube;
+
+/* ---- gas fields on a regular grid (plug conveying gas model) ---- */
+/* Cell-centred values on nx x ny x nz cells of edge spacing[] whose lower
+ * corner is origin; cell (i, j, k) is value index i + nx (j + ny k). */
+typedef struct mimas_gas {
+    int present;             /* 0: no gas fields in this frame */
+    double origin[3], spacing[3];
+    size_t cells[3];
+    size_t cap;              /* cells allocated */
+    double *pressure;        /* Pa */
+    double *porosity;        /* void fraction, 1 */
+    double (*velocity)[3];   /* superficial (Darcy) gas velocity, m/s */
+} mimas_gas;
+
+/* Sets the grid to nx x ny x nz cells, growing the arrays as needed, and
+ * marks it present (values not initialised). */
+int mimas_gas_resize(mimas_gas *g, size_t nx, size_t ny, size_t nz, mimas_error *err);
+size_t mimas_gas_cells(const mimas_gas *g);
+void mimas_gas_free(mimas_gas *g);
+
 typedef struct mimas_frame {
     int64_t step;
     double time;
@@ -151,6 +184,8 @@ typedef struct mimas_frame {
     mimas_particles particles;
     mimas_contacts contacts;
     mimas_wall_contacts walls;
+    mimas_tube tube;         /* the tube of a tube-flow run (present: the input says) */
+    mimas_gas gas;           /* gas fields (present: this frame has them) */
 } mimas_frame;
 
 void mimas_frame_init(mimas_frame *f);

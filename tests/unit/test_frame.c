@@ -143,6 +143,33 @@ static void test_box_geometry(void **state)
     assert_true(e[1][0] == 0.5 && e[2][0] == -0.25 && e[2][1] == 0.75);
 }
 
+/* The gas grid grows, keeps its shape, refuses empty or overflowing sizes,
+ * and a cleared frame has neither gas fields nor a tube. */
+static void test_gas_grid(void **state)
+{
+    (void)state;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    mimas_error err;
+    assert_false(f.gas.present);
+    assert_int_equal(mimas_gas_cells(&f.gas), 0);
+    assert_int_equal(mimas_gas_resize(&f.gas, 150, 2, 2, &err), MIMAS_OK);
+    assert_int_equal(mimas_gas_cells(&f.gas), 600);
+    for (size_t c = 0; c < 600; c++)
+        f.gas.pressure[c] = (double)c, f.gas.velocity[c][2] = -(double)c;
+    assert_int_equal(mimas_gas_resize(&f.gas, 2, 2, 2, &err), MIMAS_OK);
+    assert_int_equal(mimas_gas_cells(&f.gas), 8);
+    assert_true(f.gas.pressure[7] == 7.0 && f.gas.velocity[7][2] == -7.0);
+    assert_int_equal(mimas_gas_resize(&f.gas, 0, 2, 2, &err), MIMAS_EDATA);
+    assert_int_equal(mimas_gas_resize(&f.gas, SIZE_MAX / 2, 4, 1, &err), MIMAS_EDATA);
+    f.tube.present = 1;
+    mimas_frame_clear(&f);
+    assert_false(f.gas.present);
+    assert_false(f.tube.present);
+    assert_int_equal(mimas_gas_cells(&f.gas), 0);
+    mimas_frame_free(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -152,6 +179,7 @@ int main(void)
         cmocka_unit_test(test_clear_drops_optional),
         cmocka_unit_test(test_id_index_dense_and_sorted),
         cmocka_unit_test(test_box_geometry),
+        cmocka_unit_test(test_gas_grid),
     };
     return cmocka_run_group_tests_name("frame", tests, NULL, NULL);
 }
