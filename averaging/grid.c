@@ -2,6 +2,8 @@
 
 #include "grid.h"
 
+#include "axis.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,46 +17,14 @@ const char *mimas_grid_coord_name(const mimas_grid *g, int d)
     return g->kind == MIMAS_GRID_CYLINDRICAL ? cyl_names[d] : cart_names[d];
 }
 
-static int parse_axis(mimas_grid *g, const char *axis, mimas_error *err)
+static int parse_axis(mimas_grid *g, const char *spec, mimas_error *err)
 {
-    double v[6] = {0, 0, 0, 0, 0, 1};
-    if (axis) {
-        char *end;
-        const char *p = axis;
-        for (int k = 0; k < 6; k++) {
-            v[k] = strtod(p, &end);
-            if (end == p || !isfinite(v[k]) || (k < 5 ? *end != ',' : *end != '\0'))
-                return mimas_error_set(err, MIMAS_EUSAGE,
-                                       "--axis needs six numbers X0,Y0,Z0,DX,DY,DZ, not '%s'",
-                                       axis);
-            p = end + 1;
-        }
-    }
-    double len = sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
-    if (!(len > 0))
-        return mimas_error_set(err, MIMAS_EUSAGE, "--axis direction is zero");
-    for (int d = 0; d < 3; d++) {
-        g->origin[d] = v[d];
-        g->ez[d] = v[3 + d] / len;
-    }
-    /* e_x: the global x (or y if the axis is along x) made normal to e_z */
-    double ref[3] = {1, 0, 0};
-    if (fabs(g->ez[0]) > 0.9) {
-        ref[0] = 0;
-        ref[1] = 1;
-    }
-    double dot = ref[0] * g->ez[0] + ref[1] * g->ez[1] + ref[2] * g->ez[2];
-    double n = 0;
-    for (int d = 0; d < 3; d++) {
-        g->ex[d] = ref[d] - dot * g->ez[d];
-        n += g->ex[d] * g->ex[d];
-    }
-    n = sqrt(n);
+    mimas_axis a;
+    int rc = mimas_axis_parse(&a, spec, err);
+    if (rc)
+        return rc;
     for (int d = 0; d < 3; d++)
-        g->ex[d] /= n;
-    g->ey[0] = g->ez[1] * g->ex[2] - g->ez[2] * g->ex[1];
-    g->ey[1] = g->ez[2] * g->ex[0] - g->ez[0] * g->ex[2];
-    g->ey[2] = g->ez[0] * g->ex[1] - g->ez[1] * g->ex[0];
+        g->origin[d] = a.origin[d], g->ez[d] = a.ez[d], g->ex[d] = a.ex[d], g->ey[d] = a.ey[d];
     return MIMAS_OK;
 }
 

@@ -1,6 +1,7 @@
 /* Averaging grids: parsing, cell geometry, axis frames. */
 #include <config.h>
 
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -9,6 +10,7 @@
 #include <cmocka.h>
 
 #include "assert_close.h"
+#include "axis.h"
 #include "grid.h"
 
 static void test_cartesian_cells_tile_the_box(void **state)
@@ -99,12 +101,50 @@ static void test_none_and_tilted_box(void **state)
     assert_int_equal(mimas_grid_cells(&g), 1);
 }
 
+/* mimas_axis: an orthonormal right-handed frame for any direction; points
+ * and vectors into it; bad specs refused. */
+static void test_axis_module(void **state)
+{
+    (void)state;
+    const double dirs[4][3] = {{1, 1, 0}, {1, 0, 0}, {0, 0, -2}, {0.3, -0.4, 0.8}};
+    for (int k = 0; k < 4; k++) {
+        mimas_axis a;
+        const double o[3] = {1, 2, 3};
+        assert_int_equal(mimas_axis_set(&a, o, dirs[k], NULL), MIMAS_OK);
+        const double *e[3] = {a.ex, a.ey, a.ez};
+        for (int p = 0; p < 3; p++)
+            for (int q = 0; q < 3; q++)
+                assert_close(e[p][0] * e[q][0] + e[p][1] * e[q][1] + e[p][2] * e[q][2],
+                             p == q ? 1.0 : 0.0, 1e-15);
+        /* e_x x e_y = e_z */
+        assert_close(a.ex[1] * a.ey[2] - a.ex[2] * a.ey[1], a.ez[0], 1e-15);
+        double len = sqrt(dirs[k][0] * dirs[k][0] + dirs[k][1] * dirs[k][1] +
+                          dirs[k][2] * dirs[k][2]);
+        double x[3] = {o[0] + 2 * dirs[k][0] / len, o[1] + 2 * dirs[k][1] / len,
+                       o[2] + 2 * dirs[k][2] / len}, l[3];
+        mimas_axis_to_local(&a, x, l);
+        assert_close(l[0], 0, 1e-15);
+        assert_close(l[1], 0, 1e-15);
+        assert_close(l[2], 2, 1e-15);
+        mimas_axis_vector_to_local(&a, a.ex, l);
+        assert_close(l[0], 1, 1e-15);
+    }
+    mimas_axis a;
+    mimas_error err;
+    assert_int_equal(mimas_axis_parse(&a, "0,0,0,0,0,0", &err), MIMAS_EUSAGE);
+    assert_int_equal(mimas_axis_parse(&a, "0,0,0,1,0", &err), MIMAS_EUSAGE);
+    assert_int_equal(mimas_axis_parse(&a, "0,0,0,1,0,1,", &err), MIMAS_EUSAGE);
+    assert_int_equal(mimas_axis_parse(&a, NULL, &err), MIMAS_OK);
+    assert_true(a.ez[2] == 1.0 && a.ex[0] == 1.0 && a.ey[1] == 1.0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cartesian_cells_tile_the_box),
         cmocka_unit_test(test_cylindrical_volumes),
         cmocka_unit_test(test_axis_frame),
+        cmocka_unit_test(test_axis_module),
         cmocka_unit_test(test_bad_specs),
         cmocka_unit_test(test_none_and_tilted_box),
     };
