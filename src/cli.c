@@ -2,6 +2,8 @@
 
 #include "cli.h"
 
+#include "parallel.h"
+
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
@@ -93,6 +95,9 @@ int cli_open_inputs(const cli_command *cmd, cli_inputs *in, int argc, char **arg
 
 int cli_fail(const cli_command *cmd, int status, const char *fmt, ...)
 {
+    /* under MPI every rank agrees on the failure; one of them says it */
+    if (mimas_par_rank() != 0)
+        return status;
     va_list ap;
     fprintf(stderr, "mimas %s: ", cmd->name);
     va_start(ap, fmt);
@@ -209,7 +214,8 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler
         if (c == -1)
             break;
         if (c == 'h') {
-            cli_print_help(cmd, stdout);
+            if (mimas_par_rank() == 0)
+                cli_print_help(cmd, stdout);
             return -1;
         }
         if (c == '?')
@@ -300,6 +306,13 @@ int cli_window_time(const cli_command *cmd, cli_window *w, int from, const char 
     return 0;
 }
 
+int cli_window_every(const cli_command *cmd, cli_window *w, const char *arg)
+{
+    if (cli_parse_long(arg, &w->every) || w->every < 1)
+        return cli_fail(cmd, 1, "--every needs a positive whole number, not '%s'", arg);
+    return 0;
+}
+
 int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mimas_error *err)
 {
     if ((w->has_from || w->has_to) && isnan(f->time)) {
@@ -337,7 +350,7 @@ static double seconds(void)
 
 void cli_progress_start(cli_progress *p, const cli_inputs *in)
 {
-    p->on = !in->quiet && isatty(STDERR_FILENO);
+    p->on = !in->quiet && isatty(STDERR_FILENO) && mimas_par_rank() == 0;
     p->last = seconds();
 }
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "parallel.h"
 
 static const cli_command *const commands[] = {
     &cmd_info,
@@ -52,7 +53,21 @@ static const cli_command *find(const char *name)
     return NULL;
 }
 
+static int dispatch(int argc, char **argv);
+
 int main(int argc, char **argv)
+{
+    /* under mpirun: MPI for the frame-parallel commands (docs/parallel.md) */
+    if (mimas_par_init(&argc, &argv)) {
+        fprintf(stderr, "mimas: MPI could not start\n");
+        return 2;
+    }
+    int rc = dispatch(argc, argv);
+    mimas_par_finalize();
+    return rc;
+}
+
+static int dispatch(int argc, char **argv)
 {
     /* the library checks GSL's return codes (a fit that fails has a status);
      * GSL's default handler would abort the program instead */
@@ -63,7 +78,10 @@ int main(int argc, char **argv)
     }
     const char *name = argv[1];
     if (!strcmp(name, "--version") || !strcmp(name, "-V")) {
-        printf("mimas %s\n", PACKAGE_VERSION);
+        const char *mpi = mimas_par_library();
+        if (mimas_par_rank() == 0)
+            printf("mimas %s (%s)\n", PACKAGE_VERSION,
+                   mpi ? mpi : "serial build, without MPI");
         return 0;
     }
     if (!strcmp(name, "--help") || !strcmp(name, "-h")) {
