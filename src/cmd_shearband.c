@@ -228,16 +228,20 @@ static int run(const cli_command *cmd, int argc, char **argv)
     cli_inputs_free(&in);
     if (rc)
         return rc < 0 ? 0 : rc;
+    /* under MPI the fits and the output are rank 0's (its average holds every
+     * rank's frames); the others end with its status */
+    int root = mimas_par_rank() == 0;
     mimas_band *b = NULL;
-    if (!status)
+    if (!status && root)
         status = mimas_band_analyse(fs, &a.o, &b, &err);
     mimas_fieldset_close(fs);
-    if (!status && a.plot)
+    if (!status && root && a.plot)
         status = mimas_band_plot(b, a.plot, &err);
     band_table t = {&a, b};
-    if (!status)
+    if (!status && root)
         status = cli_write_table(a.output, write_table, &t, &err);
     mimas_band_free(b);
+    status = mimas_par_share(status, NULL, 0, &err);
     if (status)
         return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
     return 0;

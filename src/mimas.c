@@ -20,6 +20,16 @@ static const cli_command *const commands[] = {
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 
+/* The commands that split their frames over MPI ranks (docs/parallel.md). */
+static int frame_parallel(const char *name)
+{
+    static const char *const names[] = {"average", "voronoi", "shearband"};
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
+        if (!strcmp(names[k], name))
+            return 1;
+    return 0;
+}
+
 static void usage(FILE *out)
 {
     fprintf(out,
@@ -119,5 +129,11 @@ static int dispatch(int argc, char **argv)
         fprintf(stderr, "mimas: unknown command '%s' (see mimas help)\n", name);
         return 1;
     }
-    return c->run(c, argc - 1, argv + 1);
+    if (mimas_par_size() == 1 || frame_parallel(c->name))
+        return c->run(c, argc - 1, argv + 1);
+    /* under mpirun, a command that is not frame-parallel runs on rank 0 alone;
+     * the other ranks end with its exit status */
+    int status = mimas_par_rank() == 0 ? c->run(c, argc - 1, argv + 1) : 0;
+    mimas_par_share(MIMAS_OK, &status, sizeof status, NULL);
+    return status;
 }

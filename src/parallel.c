@@ -183,9 +183,12 @@ int mimas_par_agree(int status, size_t position, mimas_error *err)
     if (size == 1)
         return status;
     int failed = status != MIMAS_OK && status != MIMAS_END;
-    uint64_t key = failed ? (uint64_t)(position == SIZE_MAX ? UINT64_MAX / 2 : position) *
-                                    (uint64_t)size + (uint64_t)rank
-                          : UINT64_MAX, best = UINT64_MAX;
+    /* key = position * size + rank, positions capped so that it cannot overflow
+     * (and SIZE_MAX, "before any frame" or "after all", sorts last) */
+    uint64_t cap = (UINT64_MAX - (uint64_t)size) / (uint64_t)size - 1;
+    uint64_t pos = (uint64_t)position > cap ? cap : (uint64_t)position;
+    uint64_t key = failed ? pos * (uint64_t)size + (uint64_t)rank : UINT64_MAX,
+             best = UINT64_MAX;
     MPI_Allreduce(&key, &best, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD);
     if (best == UINT64_MAX) {
         /* nobody failed: all ended (END) unless all are fine (OK) */
