@@ -465,6 +465,32 @@ const char *mimas_native_creator(const mimas_native *r)
     return r->creator;
 }
 
+size_t mimas_native_particle_columns(const mimas_native *r)
+{
+    return r->npcols;
+}
+
+void mimas_native_particle_column(const mimas_native *r, size_t k, mimas_native_column *c)
+{
+    const native_col *nc = &r->pcols[k];
+    memset(c, 0, sizeof *c);
+    c->name = nc->name;
+    c->ncomp = nc->ncomp;
+    h5_quiet q;
+    h5_quiet_begin(&q);
+    hid_t ft = H5Dget_type(nc->ds);
+    c->is_float = H5Tget_class(ft) == H5T_FLOAT;
+    c->precision = (int)H5Tget_size(ft);
+    H5Tclose(ft);
+    hsize_t dims[4] = {0};
+    c->rank = ds_shape(nc->ds, dims);
+    if (c->rank > 3)
+        c->rank = 3;
+    for (int d = 0; d < c->rank; d++)
+        c->dims[d] = dims[d];
+    h5_quiet_end(&q);
+}
+
 /* ---- reading frame k ---- */
 
 static herr_t read_block(hid_t ds, hid_t memtype, int rank, const hsize_t *start,

@@ -264,7 +264,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     FILE *out = table.fp;
     mimas_fields_file *ff = NULL;
     if (!status && a.output)
-        status = mimas_fields_open(&ff, a.output, &err);
+        status = mimas_fields_open(&ff, a.output, want, &err);
     mimas_average *one = NULL; /* the current frame alone (--per-frame) */
     if (!status && a.per_frame) {
         mimas_average_options o1 = o;

@@ -50,6 +50,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     mimas_writer_options_default(&o);
     o.deflate = (int)a.deflate;
     o.atomic = 1; /* no partial output: the file appears when it is complete */
+    o.xdmf = 1;   /* and its sidecar for ParaView */
     char *provenance = cli_command_line(argc, argv);
     o.provenance = provenance;
     mimas_writer *w = NULL;

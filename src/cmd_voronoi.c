@@ -144,6 +144,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
         mimas_writer_options wo;
         mimas_writer_options_default(&wo);
         wo.atomic = 1; /* no partial output */
+        wo.xdmf = 1;
         wo.provenance = provenance;
         status = mimas_writer_open(&w, a.output, &wo, &err);
     }

@@ -24,6 +24,7 @@
 
 #include "h5util.h"
 #include "native_layout.h"
+#include "xdmf.h"
 
 #define PARTICLE_CHUNK_MAX 32768   /* rows of a per-particle chunk */
 #define ROW_CHUNK 32768            /* rows of a per-contact chunk */
@@ -669,6 +670,13 @@ int mimas_writer_close(mimas_writer *w, mimas_error *err)
                              w->path);
     if (rc)
         remove(w->open_path);
+    if (!rc && w->opt.xdmf) {
+        /* the sidecar describes the finished file (a failure leaves no sidecar,
+         * and the trajectory itself complete) */
+        char sidecar[4200];
+        mimas_xdmf_path(w->path, NULL, sidecar, sizeof sidecar);
+        rc = mimas_xdmf_trajectory(w->path, sidecar, err);
+    }
     free(w->path);
     free(w->open_path);
     free(w);
