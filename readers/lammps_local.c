@@ -188,7 +188,7 @@ static int named_layout(dump_series *s, local_layout *l, const char *names, mima
     if (!text)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
     size_t c = 0;
-    int rc = MIMAS_OK;
+    int rc = MIMAS_OK, prev_idx = 0;
     const char *sep = strchr(names, ',') ? "," : " \t";
     for (char *tok = strtok_r(text, sep, &save); tok && !rc; tok = strtok_r(NULL, sep, &save)) {
         if (c >= l->c.ncols) {
@@ -201,8 +201,11 @@ static int named_layout(dump_series *s, local_layout *l, const char *names, mima
         for (size_t k = 0; k < sizeof named / sizeof named[0]; k++)
             if (!strcmp(named[k].name, tok))
                 set(col, named[k].target, named[k].comp);
-        if (col->target == L_EXTRA)
-            col->extra = add_extra(l, tok, 1);
+        if (col->target != L_EXTRA)
+            prev_idx = 0;
+        /* other names are extras; NAME[1] NAME[2] ... form one of k components */
+        else if (dump_columns_extra_column(&l->c, col, tok, &prev_idx))
+            rc = text_error(&s->in, err, "column '%s' appears twice", tok);
     }
     free(text);
     if (!rc && c != l->c.ncols)

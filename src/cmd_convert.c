@@ -1,4 +1,5 @@
-/* mimas convert: any input into the native format. */
+/* mimas convert: any input into the native format, or into LAMMPS/LIGGGHTS
+ * text dumps. */
 #include <config.h>
 
 #include <stdio.h>
@@ -6,17 +7,24 @@
 #include <string.h>
 
 #include "commands.h"
+#include "lammps_write.h"
 #include "native.h"
 #include "reader.h"
 
 static const cli_option options[] = {
-    {"output", 'o', "OUT.h5", "the native file to write (required)"},
+    {"output", 'o', "OUT", "the file to write (required): OUT.h5 (native), or OUT.dump / "
+                         "OUT.dump.gz with --to lammps"},
     {"deflate", 0, "LEVEL", "gzip level 0-9 of particle and contact data (default 1; 0 is "
                             "fastest)"},
+    {"to", 0, "FORMAT", "native (default), or lammps: a dump custom file of the particles and "
+                        "dump local files of the contacts (OUT.pairs.dump) and wall contacts "
+                        "(OUT.walls.dump); the default for names ending in .dump or .dump.gz"},
 };
 
+enum { O_OUTPUT, O_DEFLATE, O_TO };
+
 typedef struct convert_args {
-    const char *output;
+    const char *output, *to;
     long deflate;
     const cli_command *cmd;
 } convert_args;
@@ -24,16 +32,60 @@ typedef struct convert_args {
 static int on_option(void *ctx, size_t opt, const char *arg)
 {
     convert_args *a = ctx;
-    if (opt == 0)
+    if (opt == O_OUTPUT)
         a->output = arg;
+    else if (opt == O_TO && strcmp(arg, "native") != 0 && strcmp(arg, "lammps") != 0)
+        return cli_fail(a->cmd, 1, "--to is native or lammps, not '%s'", arg);
+    else if (opt == O_TO)
+        a->to = arg;
     else if (cli_parse_long(arg, &a->deflate) || a->deflate < 0 || a->deflate > 9)
         return cli_fail(a->cmd, 1, "--deflate needs a level from 0 to 9, not '%s'", arg);
     return 0;
 }
 
+static int ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), m = strlen(suffix);
+    return n >= m && !strcmp(s + n - m, suffix);
+}
+
+/* The frames as LAMMPS dumps; says on standard error where the contacts went. */
+static int to_lammps(const cli_command *cmd, const cli_inputs *in, mimas_reader *r,
+                     const char *output, const char *input, mimas_error *err)
+{
+    mimas_dump_writer *w = NULL;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    int rc = mimas_dump_open(&w, output, err);
+    cli_progress prog;
+    cli_progress_start(&prog, in);
+    while (!rc && (rc = mimas_reader_next(r, &f, err)) == MIMAS_OK) {
+        rc = mimas_dump_append(w, &f, err);
+        cli_progress_frame(&prog, cmd, mimas_dump_frames(w), (long long)f.step, f.time);
+    }
+    cli_progress_done(&prog);
+    mimas_frame_free(&f);
+    if (rc == MIMAS_END && mimas_dump_frames(w) == 0)
+        rc = mimas_error_set(err, MIMAS_EDATA, "%s: no frames to convert", input);
+    int local[2] = {0, 0};
+    if (rc == MIMAS_END)
+        rc = mimas_dump_close(w, local, err);
+    else
+        mimas_dump_abort(w);
+    for (int k = 0; !rc && !in->quiet && k < 2; k++)
+        if (local[k]) {
+            char path[4200];
+            mimas_dump_local_path(output, k, path, sizeof path);
+            fprintf(stderr, "mimas convert: %s in %s (read back with --%s %s)\n",
+                    k ? "wall contacts" : "contacts", path, k ? "wall-contacts" : "contacts",
+                    path);
+        }
+    return rc;
+}
+
 static int run(const cli_command *cmd, int argc, char **argv)
 {
-    convert_args a = {NULL, 1, cmd};
+    convert_args a = {NULL, NULL, 1, cmd};
     cli_inputs in = {0};
     int first;
     int rc = cli_parse(cmd, argc, argv, on_option, &a, &in, &first);
@@ -45,6 +97,21 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (rc) {
         cli_inputs_free(&in);
         return rc < 0 ? 0 : rc;
+    }
+    int lammps = a.to ? !strcmp(a.to, "lammps")
+                      : ends_with(a.output, ".dump") || ends_with(a.output, ".dump.gz");
+    if (lammps) {
+        mimas_error err;
+        rc = to_lammps(cmd, &in, r, a.output, argv[first], &err);
+        size_t skipped = mimas_reader_skipped(r);
+        mimas_reader_close(r);
+        cli_inputs_free(&in);
+        if (rc)
+            return cli_fail(cmd, mimas_exit_status(rc), "%s", err.msg);
+        if (skipped)
+            fprintf(stderr, "mimas convert: skipped %zu frames whose contact data were missing\n",
+                    skipped);
+        return 0;
     }
     mimas_writer_options o;
     mimas_writer_options_default(&o);
@@ -86,12 +153,19 @@ static int run(const cli_command *cmd, int argc, char **argv)
 
 const cli_command cmd_convert = {
     "convert",
-    "write any input (dumps, MercuryDPM files, native files) in the native format",
-    "[options] INPUT... -o OUT.h5",
+    "write any input (dumps, MercuryDPM files, native files) as a native file or LAMMPS dumps",
+    "[options] INPUT... -o OUT.h5 | -o OUT.dump[.gz] [--to lammps]",
     "Reads the inputs frame by frame (with their contact and wall-contact files)\n"
-    "and writes them to OUT.h5 in the native format (docs/format.md).  The file\n"
-    "is written under a temporary name and renamed when complete, so a failed\n"
-    "conversion leaves nothing behind.",
+    "and writes them to OUT.h5 in the native format (docs/format.md), with the\n"
+    "XDMF sidecar OUT.xdmf that ParaView opens.  With --to lammps (the default for\n"
+    "OUT.dump and OUT.dump.gz) it writes LAMMPS/LIGGGHTS text dumps instead: the\n"
+    "particles as dump custom (id type x y z ix iy iz vx vy vz omegax omegay omegaz\n"
+    "fx fy fz radius mass and the extra columns, as present), the contacts and wall\n"
+    "contacts as dump local files with named columns (OUT.pairs.dump,\n"
+    "OUT.walls.dump; docs/readers.md), every number with 17 significant digits, so\n"
+    "that reading them back gives the same frames.  A name ending in .gz is\n"
+    "compressed.  Everything is written under temporary names and renamed when\n"
+    "complete, so a failed conversion leaves nothing behind.",
     options,
     sizeof options / sizeof options[0],
     1,
