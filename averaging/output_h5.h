@@ -11,7 +11,7 @@
 #include "error.h"
 
 #define MIMAS_FIELDS_VERSION_MAJOR 1
-#define MIMAS_FIELDS_VERSION_MINOR 0
+#define MIMAS_FIELDS_VERSION_MINOR 1
 
 typedef struct mimas_fields_file mimas_fields_file;
 
