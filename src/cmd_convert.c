@@ -49,38 +49,80 @@ static int ends_with(const char *s, const char *suffix)
     return n >= m && !strcmp(s + n - m, suffix);
 }
 
-/* The frames as LAMMPS dumps; says on standard error where the contacts went. */
-static int to_lammps(const cli_command *cmd, const cli_inputs *in, mimas_reader *r,
-                     const char *output, const char *input, mimas_error *err)
+/* The file being written: the native writer or the dump writer behind one
+ * set of calls. */
+typedef struct sink {
+    void *w;
+    int (*append)(void *w, const mimas_frame *f, mimas_error *err);
+    size_t (*frames)(const void *w);
+    int (*close)(void *w, mimas_error *err);   /* (the dumps: close_dump) */
+    void (*abort)(void *w);
+    int local[2];   /* the dumps wrote contact and wall-contact files */
+} sink;
+
+static int native_append(void *w, const mimas_frame *f, mimas_error *err)
 {
-    mimas_dump_writer *w = NULL;
+    return mimas_writer_append(w, f, err);
+}
+static size_t native_frames(const void *w)
+{
+    return mimas_writer_frames(w);
+}
+static int native_close(void *w, mimas_error *err)
+{
+    return mimas_writer_close(w, err);
+}
+static void native_abort(void *w)
+{
+    mimas_writer_abort(w);
+}
+static int dump_append(void *w, const mimas_frame *f, mimas_error *err)
+{
+    return mimas_dump_append(w, f, err);
+}
+static size_t dump_frames(const void *w)
+{
+    return mimas_dump_frames(w);
+}
+static void dump_abort(void *w)
+{
+    mimas_dump_abort(w);
+}
+
+/* Every frame of r into the sink, which is closed (or aborted on failure). */
+static int convert_frames(const cli_command *cmd, const cli_inputs *in, mimas_reader *r,
+                          sink *out, int (*close)(sink *, mimas_error *), const char *input,
+                          mimas_error *err)
+{
     mimas_frame f;
     mimas_frame_init(&f);
-    int rc = mimas_dump_open(&w, output, err);
+    int rc;
     cli_progress prog;
     cli_progress_start(&prog, in);
-    while (!rc && (rc = mimas_reader_next(r, &f, err)) == MIMAS_OK) {
-        rc = mimas_dump_append(w, &f, err);
-        cli_progress_frame(&prog, cmd, mimas_dump_frames(w), (long long)f.step, f.time);
+    while ((rc = mimas_reader_next(r, &f, err)) == MIMAS_OK) {
+        rc = out->append(out->w, &f, err);
+        if (rc)
+            break;
+        cli_progress_frame(&prog, cmd, out->frames(out->w), (long long)f.step, f.time);
     }
     cli_progress_done(&prog);
     mimas_frame_free(&f);
-    if (rc == MIMAS_END && mimas_dump_frames(w) == 0)
+    if (rc == MIMAS_END && out->frames(out->w) == 0)
         rc = mimas_error_set(err, MIMAS_EDATA, "%s: no frames to convert", input);
-    int local[2] = {0, 0};
     if (rc == MIMAS_END)
-        rc = mimas_dump_close(w, local, err);
-    else
-        mimas_dump_abort(w);
-    for (int k = 0; !rc && !in->quiet && k < 2; k++)
-        if (local[k]) {
-            char path[4200];
-            mimas_dump_local_path(output, k, path, sizeof path);
-            fprintf(stderr, "mimas convert: %s in %s (read back with --%s %s)\n",
-                    k ? "wall contacts" : "contacts", path, k ? "wall-contacts" : "contacts",
-                    path);
-        }
+        return close(out, err);
+    out->abort(out->w);
     return rc;
+}
+
+static int close_native(sink *s, mimas_error *err)
+{
+    return s->close(s->w, err);
+}
+
+static int close_dump(sink *s, mimas_error *err)
+{
+    return mimas_dump_close(s->w, s->local, err);
 }
 
 static int run(const cli_command *cmd, int argc, char **argv)
@@ -100,51 +142,42 @@ static int run(const cli_command *cmd, int argc, char **argv)
     }
     int lammps = a.to ? !strcmp(a.to, "lammps")
                       : ends_with(a.output, ".dump") || ends_with(a.output, ".dump.gz");
-    if (lammps) {
-        mimas_error err;
-        rc = to_lammps(cmd, &in, r, a.output, argv[first], &err);
-        size_t skipped = mimas_reader_skipped(r);
-        mimas_reader_close(r);
-        cli_inputs_free(&in);
-        if (rc)
-            return cli_fail(cmd, mimas_exit_status(rc), "%s", err.msg);
-        if (skipped)
-            fprintf(stderr, "mimas convert: skipped %zu frames whose contact data were missing\n",
-                    skipped);
-        return 0;
-    }
-    mimas_writer_options o;
-    mimas_writer_options_default(&o);
-    o.deflate = (int)a.deflate;
-    o.atomic = 1; /* no partial output: the file appears when it is complete */
-    o.xdmf = 1;   /* and its sidecar for ParaView */
-    char *provenance = cli_command_line(argc, argv);
-    o.provenance = provenance;
-    mimas_writer *w = NULL;
     mimas_error err;
-    mimas_frame f;
-    mimas_frame_init(&f);
-    rc = mimas_writer_open(&w, a.output, &o, &err);
-    cli_progress prog;
-    cli_progress_start(&prog, &in);
-    while (!rc && (rc = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
-        rc = mimas_writer_append(w, &f, &err);
-        cli_progress_frame(&prog, cmd, mimas_writer_frames(w), (long long)f.step, f.time);
+    char *provenance = cli_command_line(argc, argv);
+    sink out = {NULL, NULL, NULL, NULL, NULL, {0, 0}};
+    if (lammps) {
+        mimas_dump_writer *dw = NULL;
+        rc = mimas_dump_open(&dw, a.output, &err);
+        out = (sink){dw, dump_append, dump_frames, NULL, dump_abort, {0, 0}};
+    } else {
+        mimas_writer_options o;
+        mimas_writer_options_default(&o);
+        o.deflate = (int)a.deflate;
+        o.atomic = 1; /* no partial output: the file appears when it is complete */
+        o.xdmf = 1;   /* and its sidecar for ParaView */
+        o.provenance = provenance;
+        mimas_writer *nw = NULL;
+        rc = mimas_writer_open(&nw, a.output, &o, &err);
+        out = (sink){nw, native_append, native_frames, native_close, native_abort, {0, 0}};
     }
-    cli_progress_done(&prog);
-    if (rc == MIMAS_END && mimas_writer_frames(w) == 0)
-        rc = mimas_error_set(&err, MIMAS_EDATA, "%s: no frames to convert", argv[first]);
-    if (rc == MIMAS_END)
-        rc = mimas_writer_close(w, &err);
-    else if (w)
-        mimas_writer_abort(w);
+    if (!rc)
+        rc = convert_frames(cmd, &in, r, &out, lammps ? close_dump : close_native, argv[first],
+                            &err);
     size_t skipped = mimas_reader_skipped(r);
-    mimas_frame_free(&f);
     mimas_reader_close(r);
-    cli_inputs_free(&in);
     free(provenance);
+    int quiet = in.quiet;
+    cli_inputs_free(&in);
     if (rc)
         return cli_fail(cmd, mimas_exit_status(rc), "%s", err.msg);
+    for (int k = 0; !quiet && k < 2; k++)
+        if (out.local[k]) {
+            char path[4200];
+            mimas_dump_local_path(a.output, k, path, sizeof path);
+            fprintf(stderr, "mimas convert: %s in %s (read back with --%s %s)\n",
+                    k ? "wall contacts" : "contacts", path, k ? "wall-contacts" : "contacts",
+                    path);
+        }
     if (skipped)
         fprintf(stderr, "mimas convert: skipped %zu frames whose contact data were missing\n",
                 skipped);
