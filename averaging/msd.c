@@ -172,11 +172,14 @@ int mimas_msd_create(mimas_msd **out, mimas_msd_kind kind, size_t frames, size_t
 }
 
 /* A particle of the block: its span of frames a .. a+len-1 (len 0: never
- * present), whether it is absent inside the span, its mean position. */
+ * present), whether it is absent inside the span, and (displacements) the
+ * reference taken off its values: the record present nearest the middle
+ * of the span, close to the mean (small values round less) and a value of
+ * the data (a particle at rest has exactly zero displacements). */
 typedef struct span {
     size_t a, len;
     int gaps;
-    double mean[8];
+    double ref[8];
 } span;
 
 static int present(const double *rec) { return !isnan(rec[0]); }
@@ -191,25 +194,30 @@ static void find_span(const mimas_msd *m, const double *x, size_t stride, span *
                 first = t;
             last = t;
             n++;
-            for (size_t c = 0; c < m->ncomp; c++)
-                s->mean[c] += x[t * stride + c];
         }
     if (!n)
         return;
     s->a = first;
     s->len = last - first + 1;
     s->gaps = n < s->len;
+    if (m->kind != MIMAS_MSD_DISPLACEMENT)
+        return;
+    size_t mid = first + (last - first) / 2, best = first;
+    for (size_t t = first; t <= last; t++)
+        if (present(x + t * stride) &&
+            (t > mid ? t - mid : mid - t) < (best > mid ? best - mid : mid - best))
+            best = t;
     for (size_t c = 0; c < m->ncomp; c++)
-        s->mean[c] = m->kind == MIMAS_MSD_DISPLACEMENT ? s->mean[c] / (double)n : 0.0;
+        s->ref[c] = x[best * stride + c];
 }
 
-/* The series value at span frame t: x - mean, or 0 where absent. */
+/* The series value at span frame t: x - ref, or 0 where absent. */
 static double value(const mimas_msd *m, const double *x, size_t stride, const span *s,
                     size_t t, size_t c)
 {
     const double *rec = x + (s->a + t) * stride;
     (void)m;
-    return present(rec) ? rec[c] - s->mean[c] : 0.0;
+    return present(rec) ? rec[c] - s->ref[c] : 0.0;
 }
 
 /* qin = the indicator (c == SIZE_MAX) or m x^2 of component c, transformed. */

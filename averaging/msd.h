@@ -17,8 +17,9 @@
  * the autocorrelation of m, so each lag counts only pairs that exist.
  * Because every particle's correlation is a sum of such transforms, the
  * power spectra are summed over particles and transformed back once per
- * flush.  For displacements each particle's mean position is taken off
- * first (the displacements do not change, the rounding does).
+ * flush.  For displacements a position near the middle of each particle's
+ * span is taken off first (the displacements do not change, the rounding
+ * does).
  *
  * A workspace transforms MIMAS_MSD_BLOCK particles at a time with FFTW plans
  * made once at creation (FFTW_ESTIMATE: the same numbers on every run, for

@@ -355,6 +355,19 @@ void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, 
     fflush(stderr);
 }
 
+void cli_progress_count(cli_progress *p, const cli_command *cmd, const char *what, size_t done,
+                        size_t total)
+{
+    if (!p->on)
+        return;
+    double now = seconds();
+    if (now - p->last < 0.5)
+        return;
+    p->last = now;
+    fprintf(stderr, "\rmimas %s: %s %zu of %zu   ", cmd->name, what, done, total);
+    fflush(stderr);
+}
+
 void cli_progress_done(cli_progress *p)
 {
     if (p->on)

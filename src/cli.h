@@ -66,6 +66,9 @@ typedef struct cli_progress {
 void cli_progress_start(cli_progress *p, const cli_inputs *in);
 void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, long long step,
                         double time);
+/* The same line for a count of things: "mimas CMD: WHAT DONE of TOTAL". */
+void cli_progress_count(cli_progress *p, const cli_command *cmd, const char *what, size_t done,
+                        size_t total);
 void cli_progress_done(cli_progress *p);
 
 /* A table written to standard output, or to a file under a temporary name

@@ -3,6 +3,7 @@
 #include "h5util.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 void h5_quiet_begin(h5_quiet *q)
@@ -204,6 +205,35 @@ int h5_write_doubles(hid_t loc, const char *name, int rank, const hsize_t *dims,
     if (ds >= 0)
         H5Dclose(ds);
     H5Sclose(s);
+    return rc;
+}
+
+int h5_write_strs(hid_t loc, const char *name, const char *const *values, size_t n,
+                  const char *meaning)
+{
+    size_t w = 1;
+    for (size_t k = 0; k < n; k++)
+        if (strlen(values[k]) + 1 > w)
+            w = strlen(values[k]) + 1;
+    char *buf = calloc(n ? n : 1, w);
+    if (!buf)
+        return -1;
+    for (size_t k = 0; k < n; k++)
+        memcpy(buf + k * w, values[k], strlen(values[k]));
+    hid_t t = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t, w);
+    H5Tset_strpad(t, H5T_STR_NULLTERM);
+    hsize_t dim = n;
+    hid_t s = H5Screate_simple(1, &dim, NULL);
+    hid_t ds = H5Dcreate2(loc, name, t, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    int rc = ds < 0 || H5Dwrite(ds, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0;
+    if (!rc && meaning)
+        rc |= h5_attr_write_str(ds, "definition", meaning);
+    if (ds >= 0)
+        H5Dclose(ds);
+    H5Sclose(s);
+    H5Tclose(t);
+    free(buf);
     return rc;
 }
 
