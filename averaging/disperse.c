@@ -17,9 +17,10 @@
 #define FIT_HI_SHARE 0.5
 /* particles read from the store at once, at most */
 #define MAX_READ_BLOCK 4096
-/* the streaming keeps this share of the memory for the analysis' own needs
- * (the rest may hold trajectories) */
-#define STREAM_RESERVE 8
+/* what the libraries take beside the budget (HDF5's caches and free lists,
+ * FFTW's plans, code, the reader's frame, the heap's slack): this much plus
+ * an eighth of --memory is kept free */
+#define HEADROOM ((size_t)6 << 20)
 
 const char *mimas_disperse_component_name(int c)
 {
@@ -43,6 +44,13 @@ struct mimas_disperse {
     mimas_disperse_result res;
     int finished;
 };
+
+/* The bytes disperse may allocate: --memory less the headroom. */
+static size_t budget(const mimas_disperse_options *o)
+{
+    size_t keep = HEADROOM + o->memory / 8;
+    return o->memory > keep ? o->memory - keep : 0;
+}
 
 int mimas_disperse_create(mimas_disperse **out, const mimas_disperse_options *o,
                           mimas_error *err)
@@ -73,8 +81,11 @@ int mimas_disperse_create(mimas_disperse **out, const mimas_disperse_options *o,
     }
     if (!rc)
         rc = mimas_cohorts_create(&d->cohorts, o->cohorts, o->ncohorts, err);
-    mimas_traj_options to = {d->types, o->ntypes, o->exclude, o->vacf,
-                             o->memory - o->memory / STREAM_RESERVE, o->scratch_dir};
+    if (!rc && o->memory <= HEADROOM + o->memory / 8)
+        rc = mimas_error_set(err, MIMAS_EUSAGE, "--memory %zu bytes leaves nothing for the "
+                             "trajectories: give more than %zu", o->memory,
+                             HEADROOM + HEADROOM / 7 + 1);
+    mimas_traj_options to = {d->types, o->ntypes, o->exclude, o->vacf, budget(o), o->scratch_dir};
     if (!rc)
         rc = mimas_traj_create(&d->traj, &to, err);
     if (rc) {
@@ -123,7 +134,8 @@ typedef struct sweep {
     size_t T, N, K1, rc_n;        /* frames, particles, lags, record values */
     disperse_comps cm;
     mimas_msd *msd, *vacf;
-    mimas_msd_sums groups[MIMAS_DISPERSE_GROUPS], vgroups[MIMAS_DISPERSE_GROUPS];
+    /* [0]: every particle (every lag); [1 + g]: group g (the fit window's lags) */
+    mimas_msd_sums sums[1 + MIMAS_DISPERSE_GROUPS], vsums[1 + MIMAS_DISPERSE_GROUPS];
     size_t ngroups;
     cohort_stats *cstats;
     size_t *members;              /* per cohort: members met so far */
@@ -135,9 +147,9 @@ static void sweep_free(sweep *s)
 {
     mimas_msd_free(s->msd);
     mimas_msd_free(s->vacf);
-    for (size_t g = 0; g < MIMAS_DISPERSE_GROUPS; g++) {
-        mimas_msd_sums_free(&s->groups[g]);
-        mimas_msd_sums_free(&s->vgroups[g]);
+    for (size_t g = 0; g <= MIMAS_DISPERSE_GROUPS; g++) {
+        mimas_msd_sums_free(&s->sums[g]);
+        mimas_msd_sums_free(&s->vsums[g]);
     }
     size_t nc = s->d ? mimas_cohorts_count(s->d->cohorts) : 0;
     for (size_t k = 0; s->cstats && k < nc; k++)
@@ -163,11 +175,15 @@ static int sweep_init(sweep *s, mimas_disperse *d, mimas_error *err)
     s->ngroups = s->N < MIMAS_DISPERSE_GROUPS ? s->N : MIMAS_DISPERSE_GROUPS;
     int vacf = d->opt.vacf;
     size_t nc = mimas_cohorts_count(d->cohorts), n = s->cm.n;
-    size_t fixed = (1 + (size_t)vacf) * (mimas_msd_bytes(s->T, s->K1 - 1, n) +
-                                         s->ngroups * (n + 1) * s->K1 * sizeof(double)) +
+    size_t klo, khi;
+    disperse_window(r, &klo, &khi);
+    size_t wlags = khi + 1 - klo, vlags = khi + 1;
+    size_t fixed = (1 + (size_t)vacf) * mimas_msd_bytes(s->T, s->K1 - 1, n) +
+                   (n + 1) * sizeof(double) *
+                       ((1 + (size_t)vacf) * s->K1 + s->ngroups * (wlags + (vacf ? vlags : 0))) +
                    nc * cohort_stats_bytes(s->T) + 3 * s->K1 * MIMAS_DC_COUNT * sizeof(double);
     size_t per = s->T * (s->rc_n + n * (1 + (size_t)vacf)) * sizeof(double);
-    size_t mem = d->opt.memory;
+    size_t mem = budget(&d->opt);
     size_t held = mimas_traj_store_bytes(s->store);
     int rc = MIMAS_OK;
     if (held && held + fixed + MIMAS_MSD_BLOCK * per > mem) {
@@ -178,8 +194,8 @@ static int sweep_init(sweep *s, mimas_disperse *d, mimas_error *err)
         return rc;
     if (held + fixed + per > mem)
         return mimas_error_set(err, MIMAS_EUSAGE, "--memory %zu bytes is too small for the "
-                               "analysis of %zu frames: give at least %zu", mem, s->T,
-                               fixed + per + held);
+                               "analysis of %zu frames: give at least %zu", d->opt.memory, s->T,
+                               (fixed + per + HEADROOM) / 7 * 8 + 1);
     size_t b = (mem - held - fixed) / per;
     b = b > MAX_READ_BLOCK ? MAX_READ_BLOCK : b;
     if (b >= MIMAS_MSD_BLOCK)
@@ -190,10 +206,10 @@ static int sweep_init(sweep *s, mimas_disperse *d, mimas_error *err)
     rc = mimas_msd_create(&s->msd, MIMAS_MSD_DISPLACEMENT, s->T, s->K1 - 1, n, err);
     if (!rc && vacf)
         rc = mimas_msd_create(&s->vacf, MIMAS_MSD_AUTOCORRELATION, s->T, s->K1 - 1, n, err);
-    for (size_t g = 0; g < s->ngroups && !rc; g++) {
-        rc = mimas_msd_sums_init(&s->groups[g], n, s->K1, err);
+    for (size_t g = 0; g <= s->ngroups && !rc; g++) {
+        rc = mimas_msd_sums_init(&s->sums[g], n, g ? klo : 0, g ? wlags : s->K1, err);
         if (!rc && vacf)
-            rc = mimas_msd_sums_init(&s->vgroups[g], n, s->K1, err);
+            rc = mimas_msd_sums_init(&s->vsums[g], n, 0, g ? vlags : s->K1, err);
     }
     if (rc)
         return rc;
@@ -285,10 +301,13 @@ static int run_sweep(sweep *s, mimas_error *err)
             if (o->progress)
                 o->progress(o->progress_ctx, a + n, s->N);
         }
+        /* into the sums of every particle and those of the group */
+        mimas_msd_sums two[2] = {s->sums[0], s->sums[1 + g]};
         if (!rc)
-            rc = mimas_msd_flush(s->msd, &s->groups[g], err);
+            rc = mimas_msd_flush(s->msd, two, 2, err);
+        mimas_msd_sums vtwo[2] = {s->vsums[0], s->vsums[1 + g]};
         if (!rc && s->vacf)
-            rc = mimas_msd_flush(s->vacf, &s->vgroups[g], err);
+            rc = mimas_msd_flush(s->vacf, vtwo, 2, err);
     }
     return rc;
 }
@@ -351,9 +370,9 @@ int mimas_disperse_finish(mimas_disperse *d, mimas_error *err)
     r->scratch = mimas_traj_store_on_disk(mimas_traj_store_of(d->traj));
     r->groups = s.ngroups;
     if (!rc)
-        rc = disperse_lag_tables(r, s.groups, s.ngroups, &s.cm, 0, err);
+        rc = disperse_lag_tables(r, &s.sums[0], &s.sums[1], s.ngroups, &s.cm, 0, err);
     if (!rc && d->opt.vacf)
-        rc = disperse_lag_tables(r, s.vgroups, s.ngroups, &s.cm, 1, err);
+        rc = disperse_lag_tables(r, &s.vsums[0], &s.vsums[1], s.ngroups, &s.cm, 1, err);
     for (size_t k = 0; k < r->ncohorts && !rc; k++)
         rc = disperse_cohort_table(r, k, mimas_cohorts_get(d->cohorts, k), &s.cstats[k],
                                    mimas_traj_times(d->traj), &d->opt, err);

@@ -94,19 +94,23 @@ static double jackknife(const double *Dg, const int *ok, size_t G)
 
 /* ---- by lag: MSD and VACF ---------------------------------------------- */
 
-/* table[k][6] = sums over the groups but skip of num / count (NaN without
- * pairs); the counts into count (if not NULL). */
+/* table[k][6] = the sums over the groups but skip of num / count (NaN
+ * without pairs) at the lags they cover (the others NaN); the counts into
+ * count (if not NULL). */
 static void combine(const mimas_msd_sums *gr, size_t ngroups, size_t skip,
                     const disperse_comps *cm, size_t lags, double *table, double *count)
 {
-    for (size_t k = 0; k < lags; k++) {
+    for (size_t k = 0; k < lags * NC; k++)
+        table[k] = NAN;
+    size_t first = gr[0].first, n = gr[0].nlags;
+    for (size_t k = first; k < first + n && k < lags; k++) {
         double num[8] = {0}, cnt = 0, out[NC];
         for (size_t g = 0; g < ngroups; g++) {
             if (g == skip)
                 continue;
             for (size_t c = 0; c < cm->n; c++)
-                num[c] += gr[g].num[c * lags + k];
-            cnt += gr[g].count[k];
+                num[c] += gr[g].num[c * n + k - first];
+            cnt += gr[g].count[k - first];
         }
         disperse_comps_expand(cm, num, out);
         for (int c = 0; c < NC; c++)
@@ -116,14 +120,13 @@ static void combine(const mimas_msd_sums *gr, size_t ngroups, size_t skip,
     }
 }
 
-/* The lags of the fit window. */
-static void window(const mimas_disperse_result *r, size_t *klo, size_t *khi)
+void disperse_window(const mimas_disperse_result *r, size_t *klo, size_t *khi)
 {
     double eps = 1e-9;
     double lo = ceil(r->fit_lo / r->dt - eps), hi = floor(r->fit_hi / r->dt + eps);
     *klo = lo < 0 ? 0 : (size_t)lo;
     *khi = hi < 0 ? 0 : hi > (double)(r->lags - 1) ? r->lags - 1 : (size_t)hi;
-    if (hi < 0 || lo > hi)
+    if (hi < 0 || lo > (double)*khi)
         *klo = *khi + 1; /* empty */
 }
 
@@ -132,7 +135,7 @@ static int lag_D(const mimas_disperse_result *r, const double *table, int vacf, 
                  points *p, mimas_disperse_diffusion *row, mimas_error *err)
 {
     size_t klo, khi;
-    window(r, &klo, &khi);
+    disperse_window(r, &klo, &khi);
     int dim = mimas_disperse_component_dim(c);
     if (!vacf) {
         p->n = 0;
@@ -164,8 +167,9 @@ static int lag_D(const mimas_disperse_result *r, const double *table, int vacf, 
     return MIMAS_OK;
 }
 
-int disperse_lag_tables(mimas_disperse_result *r, const mimas_msd_sums *groups,
-                        size_t ngroups, const disperse_comps *cm, int vacf, mimas_error *err)
+int disperse_lag_tables(mimas_disperse_result *r, const mimas_msd_sums *all,
+                        const mimas_msd_sums *groups, size_t ngroups, const disperse_comps *cm,
+                        int vacf, mimas_error *err)
 {
     size_t lags = r->lags;
     double *table = vacf ? r->vacf : r->msd;
@@ -176,7 +180,7 @@ int disperse_lag_tables(mimas_disperse_result *r, const mimas_msd_sums *groups,
         free(tmp);
         return rc;
     }
-    combine(groups, ngroups, SIZE_MAX, cm, lags, table, vacf ? NULL : r->count);
+    combine(all, 1, SIZE_MAX, cm, lags, table, vacf ? NULL : r->count);
     mimas_disperse_diffusion rows[NC];
     double Dg[NC][MIMAS_DISPERSE_GROUPS];
     int ok[NC][MIMAS_DISPERSE_GROUPS];

@@ -45,13 +45,18 @@ void cohort_stats_merged(const cohort_stats *s, size_t t, size_t skip, double *n
                          double mean[3], double m2[3]);
 void cohort_stats_free(cohort_stats *s);
 
+/* The lags of the MSD fit window (klo > khi: none). */
+void disperse_window(const mimas_disperse_result *r, size_t *klo, size_t *khi);
 /* Appends a row to r's diffusion table. */
 int disperse_push_diffusion(mimas_disperse_result *r, const mimas_disperse_diffusion *row,
                             mimas_error *err);
-/* The MSD (vacf 0) or VACF table of r from the per-group sums, and the D
- * rows of the six components (fits over r->fit_lo .. r->fit_hi). */
-int disperse_lag_tables(mimas_disperse_result *r, const mimas_msd_sums *groups,
-                        size_t ngroups, const disperse_comps *cm, int vacf, mimas_error *err);
+/* The MSD (vacf 0) or VACF table of r from the sums of every particle,
+ * and the D rows of the six components (fits over r->fit_lo .. r->fit_hi),
+ * their jackknife from the per-group sums (over the window's lags; for the
+ * VACF from lag 0). */
+int disperse_lag_tables(mimas_disperse_result *r, const mimas_msd_sums *all,
+                        const mimas_msd_sums *groups, size_t ngroups, const disperse_comps *cm,
+                        int vacf, mimas_error *err);
 /* The rows of cohort k of r from its statistics, and its two D rows. */
 int disperse_cohort_table(mimas_disperse_result *r, size_t k, const mimas_cohort *c,
                           const cohort_stats *st, const double *times,

@@ -9,9 +9,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-int mimas_msd_sums_init(mimas_msd_sums *s, size_t ncomp, size_t nlags, mimas_error *err)
+int mimas_msd_sums_init(mimas_msd_sums *s, size_t ncomp, size_t first, size_t nlags,
+                        mimas_error *err)
 {
     memset(s, 0, sizeof *s);
+    s->first = first;
     s->num = calloc(ncomp * nlags + 1, sizeof *s->num);
     s->count = calloc(nlags + 1, sizeof *s->count);
     if (!s->num || !s->count) {
@@ -83,7 +85,7 @@ static size_t even(size_t n) { return n + (n & 1); }
 size_t mimas_msd_bytes(size_t frames, size_t max_lag, size_t ncomp)
 {
     size_t nfft = mimas_msd_fft_length(frames, max_lag), nc = nfft / 2 + 1;
-    size_t doubles = MIMAS_MSD_BLOCK * nfft + 2 * nfft + frames
+    size_t doubles = MIMAS_MSD_BLOCK * nfft + 2 * nfft + max_lag + 1 + frames
                      + (2 * ncomp + 1) * nc + (ncomp + 1) * (max_lag + 1);
     size_t complexes = MIMAS_MSD_BLOCK * (even(nc) + nc) + 2 * nc;
     return doubles * sizeof(double) + complexes * sizeof(fftw_complex);
@@ -143,7 +145,7 @@ int mimas_msd_create(mimas_msd **out, mimas_msd_kind kind, size_t frames, size_t
     m->qout = fftw_alloc_complex(nc);
     m->mrows = fftw_alloc_complex(B * nc);
     m->spec = fftw_alloc_complex(nc);
-    m->real = fftw_alloc_real(nfft);
+    m->real = fftw_alloc_real(nfft + max_lag + 1);
     m->acc_yy = calloc(ncomp * nc, sizeof *m->acc_yy);
     m->acc_mq = calloc(ncomp * nc, sizeof *m->acc_mq);
     m->acc_mm = calloc(nc, sizeof *m->acc_mm);
@@ -337,33 +339,46 @@ static void back(mimas_msd *m, double *acc)
         m->real[k] *= scale;
 }
 
-int mimas_msd_flush(mimas_msd *m, mimas_msd_sums *s, mimas_error *err)
+/* Adds the lags of v (lags 0 .. K) that sums cover to row (of s's rows). */
+static void add_lags(const mimas_msd *m, mimas_msd_sums *s, double *row, const double *v)
+{
+    for (size_t k = s->first; k < s->first + s->nlags && k <= m->K; k++)
+        row[k - s->first] += v[k];
+}
+
+int mimas_msd_flush(mimas_msd *m, mimas_msd_sums *s, size_t ns, mimas_error *err)
 {
     size_t K1 = m->K + 1;
-    if (s->ncomp != m->ncomp || s->nlags != K1)
-        return mimas_error_set(err, MIMAS_EUSAGE, "sums of another shape");
+    for (size_t q = 0; q < ns; q++)
+        if (s[q].ncomp != m->ncomp || s[q].first + s[q].nlags > K1)
+            return mimas_error_set(err, MIMAS_EUSAGE, "sums of another shape");
     int disp = m->kind == MIMAS_MSD_DISPLACEMENT;
-    /* a displacement at lag 0 is zero: not left to the rounding */
-    size_t k0 = disp ? 1 : 0;
+    /* the particles' sums at every lag, then into each of s */
+    double *num = m->real + m->nfft; /* [K1], after the transform's output */
     for (size_t c = 0; c < m->ncomp; c++) {
-        double *num = s->num + c * K1, *s1 = m->s1 + c * K1;
+        double *s1 = m->s1 + c * K1;
         back(m, m->acc_yy + c * m->nc);
-        for (size_t k = k0; k < K1; k++)
-            num[k] += disp ? s1[k] - 2 * m->real[k] : m->real[k];
+        for (size_t k = 0; k < K1; k++)
+            num[k] = disp ? s1[k] - 2 * m->real[k] : m->real[k];
         memset(s1, 0, K1 * sizeof *s1);
         if (disp && m->gaps) {
             back(m, m->acc_mq + c * m->nc);
-            for (size_t k = k0; k < K1; k++)
+            for (size_t k = 0; k < K1; k++)
                 num[k] += m->real[k];
         }
+        /* a displacement at lag 0 is zero: not left to the rounding */
+        if (disp)
+            num[0] = 0;
+        for (size_t q = 0; q < ns; q++)
+            add_lags(m, &s[q], s[q].num + c * s[q].nlags, num);
     }
     if (m->gaps) {
         back(m, m->acc_mm);
         for (size_t k = 0; k < K1; k++)
-            s->count[k] += nearbyint(m->real[k]);
+            m->cnt[k] += nearbyint(m->real[k]);
     }
-    for (size_t k = 0; k < K1; k++)
-        s->count[k] += m->cnt[k];
+    for (size_t q = 0; q < ns; q++)
+        add_lags(m, &s[q], s[q].count, m->cnt);
     memset(m->cnt, 0, K1 * sizeof *m->cnt);
     m->gaps = 0;
     return MIMAS_OK;

@@ -44,14 +44,15 @@ typedef enum mimas_msd_kind {
     MIMAS_MSD_AUTOCORRELATION
 } mimas_msd_kind;
 
-/* The sums of a set of particles. */
+/* The sums of a set of particles over the lags first .. first+nlags-1. */
 typedef struct mimas_msd_sums {
-    size_t ncomp, nlags;
+    size_t ncomp, first, nlags;
     double *num;     /* [ncomp][nlags] */
     double *count;   /* [nlags] pairs */
 } mimas_msd_sums;
 
-int mimas_msd_sums_init(mimas_msd_sums *s, size_t ncomp, size_t nlags, mimas_error *err);
+int mimas_msd_sums_init(mimas_msd_sums *s, size_t ncomp, size_t first, size_t nlags,
+                        mimas_error *err);
 /* to += from (same shape). */
 void mimas_msd_sums_add(mimas_msd_sums *to, const mimas_msd_sums *from);
 void mimas_msd_sums_free(mimas_msd_sums *s);
@@ -71,9 +72,10 @@ size_t mimas_msd_fft_length(size_t frames, size_t max_lag);
  * component c of particle j at frame t (stride >= ncomp). */
 int mimas_msd_add(mimas_msd *m, const double *series, size_t n, size_t stride,
                   mimas_error *err);
-/* Adds the sums of the particles added since the last flush to s (of
- * ncomp components and max_lag + 1 lags) and starts afresh. */
-int mimas_msd_flush(mimas_msd *m, mimas_msd_sums *s, mimas_error *err);
+/* Adds the sums of the particles added since the last flush to each of
+ * the n sums s[] (of ncomp components; each over its lags, within 0 ..
+ * max_lag) and starts afresh. */
+int mimas_msd_flush(mimas_msd *m, mimas_msd_sums *s, size_t n, mimas_error *err);
 void mimas_msd_free(mimas_msd *m);
 
 #ifdef __cplusplus

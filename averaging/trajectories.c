@@ -143,9 +143,6 @@ static int check_time(mimas_trajectories *t, const mimas_frame *f, mimas_error *
 static int check_quantities(const mimas_trajectories *t, const mimas_particles *p,
                             mimas_error *err)
 {
-    if (p->n && !(p->present & MIMAS_P_ID))
-        return mimas_error_set(err, MIMAS_EMISSING, "the particles have no ids: trajectories "
-                               "need them");
     if (p->n && t->opt.ntypes && !(p->present & MIMAS_P_TYPE))
         return mimas_error_set(err, MIMAS_EMISSING, "the particles have no types: --types and "
                                "--exclude-types need them");

@@ -49,7 +49,7 @@ typedef struct mimas_trajectories mimas_trajectories;
 
 int mimas_traj_create(mimas_trajectories **t, const mimas_traj_options *o, mimas_error *err);
 /* Adds the next frame.  MIMAS_EDATA for unequal spacing, a frame without
- * time, a repeated id; MIMAS_EMISSING when ids, types (with a selection) or
+ * time, a repeated id; MIMAS_EMISSING when types (with a selection) or
  * velocities (when kept) are absent. */
 int mimas_traj_add(mimas_trajectories *t, const mimas_frame *f, mimas_error *err);
 /* For the frame added last: each particle's slot (SIZE_MAX: not selected)
