@@ -13,6 +13,7 @@
 #include "disperse.h"
 #include "fit.h"
 #include "h5util.h"
+#include "outfile.h"
 
 #define DISPERSE_VERSION_MAJOR 1
 #define DISPERSE_VERSION_MINOR 0
@@ -171,6 +172,8 @@ static int write_meta(hid_t file, const mimas_disperse_result *r, const char *pr
 int mimas_disperse_write_h5(const mimas_disperse_result *r, const char *path,
                             const char *provenance, mimas_error *err)
 {
+    if (mimas_output_check(path, err))
+        return err->code;
     char tmp[4200];
     snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid());
     h5_quiet q;

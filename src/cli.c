@@ -1,6 +1,7 @@
 #include <config.h>
 
 #include "cli.h"
+#include "outfile.h"
 
 #include <errno.h>
 #include <getopt.h>
@@ -382,8 +383,13 @@ int cli_output_open(cli_output *o, const char *path, mimas_error *err)
         return MIMAS_OK;
     }
     o->path = path;
-    snprintf(o->tmp, sizeof o->tmp, "%s.tmp%ld", path, (long)getpid());
-    o->fp = fopen(o->tmp, "w");
+    /* a device or a pipe takes the table as it comes: renamed onto, a
+     * finished file would replace it */
+    if (mimas_output_is_special(path))
+        o->tmp[0] = '\0';
+    else
+        snprintf(o->tmp, sizeof o->tmp, "%s.tmp%ld", path, (long)getpid());
+    o->fp = fopen(o->tmp[0] ? o->tmp : path, "w");
     if (!o->fp)
         return mimas_error_set(err, MIMAS_EIO, "%s: cannot write: %s", path, strerror(errno));
     return MIMAS_OK;
@@ -399,9 +405,9 @@ int cli_output_close(cli_output *o, int ok, mimas_error *err)
             rc = mimas_error_set(err, MIMAS_EIO, "cannot write the table");
     } else {
         int closed = fclose(o->fp) == 0;
-        if (ok && (!closed || rename(o->tmp, o->path) != 0))
+        if (ok && (!closed || (o->tmp[0] && rename(o->tmp, o->path) != 0)))
             rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", o->path);
-        if (!ok || rc)
+        if ((!ok || rc) && o->tmp[0])
             remove(o->tmp);
     }
     o->fp = NULL;

@@ -76,9 +76,10 @@ void cli_progress_done(cli_progress *p);
 typedef struct cli_output {
     FILE *fp;
     const char *path;   /* NULL: standard output */
-    char tmp[4200];
+    char tmp[4200];     /* "": written straight to path (a device or a pipe) */
 } cli_output;
-/* path NULL or "-": standard output. */
+/* path NULL or "-": standard output; a path that is not a regular file
+ * (/dev/null, a pipe) is written straight through. */
 int cli_output_open(cli_output *o, const char *path, mimas_error *err);
 /* Finishes the table: with ok, flushes (and renames the file into place);
  * else removes the temporary file.  Returns MIMAS_OK or a write error. */
