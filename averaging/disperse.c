@@ -71,7 +71,8 @@ int mimas_disperse_create(mimas_disperse **out, const mimas_disperse_options *o,
     if (!d)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
     d->opt = *o;
-    memcpy(d->types, o->types, o->ntypes * sizeof *d->types);
+    if (o->ntypes)
+        memcpy(d->types, o->types, o->ntypes * sizeof *d->types);
     d->opt.types = d->types;
     d->opt.cohorts = NULL; /* parsed below; the strings are not kept */
     int rc = MIMAS_OK;
