@@ -301,6 +301,13 @@ int cli_window_time(const cli_command *cmd, cli_window *w, int from, const char 
     return 0;
 }
 
+int cli_window_every(const cli_command *cmd, cli_window *w, const char *arg)
+{
+    if (cli_parse_long(arg, &w->every) || w->every < 1)
+        return cli_fail(cmd, 1, "--every needs a positive whole number, not '%s'", arg);
+    return 0;
+}
+
 int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mimas_error *err)
 {
     if ((w->has_from || w->has_to) && isnan(f->time)) {
@@ -342,15 +349,23 @@ void cli_progress_start(cli_progress *p, const cli_inputs *in)
     p->last = seconds();
 }
 
+/* Whether a progress line is due (on, and half a second since the last). */
+static int progress_due(cli_progress *p)
+{
+    if (!p->on)
+        return 0;
+    double now = seconds();
+    if (now - p->last < 0.5)
+        return 0;
+    p->last = now;
+    return 1;
+}
+
 void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, long long step,
                         double time)
 {
-    if (!p->on)
+    if (!progress_due(p))
         return;
-    double now = seconds();
-    if (now - p->last < 0.5)
-        return;
-    p->last = now;
     fprintf(stderr, "\rmimas %s: %zu frames (step %lld, time %g)   ", cmd->name, frames, step,
             time);
     fflush(stderr);
@@ -359,12 +374,8 @@ void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, 
 void cli_progress_count(cli_progress *p, const cli_command *cmd, const char *what, size_t done,
                         size_t total)
 {
-    if (!p->on)
+    if (!progress_due(p))
         return;
-    double now = seconds();
-    if (now - p->last < 0.5)
-        return;
-    p->last = now;
     fprintf(stderr, "\rmimas %s: %s %zu of %zu   ", cmd->name, what, done, total);
     fflush(stderr);
 }

@@ -102,6 +102,9 @@ typedef struct cli_window {
 /* --from (from = 1) or --to TIME into the window; prints the usage error
  * and returns 1 on a bad time. */
 int cli_window_time(const cli_command *cmd, cli_window *w, int from, const char *arg);
+/* --every K into the window; prints the usage error and returns 1 unless
+ * K is a positive whole number. */
+int cli_window_every(const cli_command *cmd, cli_window *w, const char *arg);
 /* 1 if frame f is used, 0 if not; MIMAS_EUSAGE (negated: -1) with err set
  * when the window needs a time the frame (of input) does not have. */
 int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mimas_error *err);

@@ -31,22 +31,14 @@
 #include <string.h>
 
 #include "assert_close.h"
+#include "particle_frame.h"
 #include "disperse.h"
 #include "scratch.h"
 
 /* ---- frames ---- */
 
-static void frame_of(mimas_frame *f, size_t n, unsigned bits, double time)
-{
-    mimas_error err;
-    mimas_frame_clear(f);
-    f->time = time;
-    f->step = (int64_t)lround(time * 1000);
-    assert_int_equal(mimas_table_set_present(&f->particles, &mimas_particles_desc,
-                                             MIMAS_P_ID | MIMAS_P_POS | bits, &err), MIMAS_OK);
-    assert_int_equal(mimas_table_resize(&f->particles, &mimas_particles_desc, n, &err),
-                     MIMAS_OK);
-}
+#define frame_of(f, n, bits, time) \
+    assert_int_equal(particle_frame(f, n, bits, time, NULL), MIMAS_OK)
 
 static const mimas_disperse_diffusion *row_of(const mimas_disperse_result *r, const char *what,
                                               int component)
