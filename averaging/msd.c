@@ -175,9 +175,9 @@ int mimas_msd_create(mimas_msd **out, mimas_msd_kind kind, size_t frames, size_t
 
 /* A particle of the block: its span of frames a .. a+len-1 (len 0: never
  * present), whether it is absent inside the span, and (displacements) the
- * reference taken off its values: the record present nearest the middle
- * of the span, close to the mean (small values round less) and a value of
- * the data (a particle at rest has exactly zero displacements). */
+ * reference taken off its values: the first record present from the middle
+ * of the span on, close to the mean (small values round less) and a value
+ * of the data (a particle at rest has exactly zero displacements). */
 typedef struct span {
     size_t a, len;
     int gaps;
@@ -204,13 +204,11 @@ static void find_span(const mimas_msd *m, const double *x, size_t stride, span *
     s->gaps = n < s->len;
     if (m->kind != MIMAS_MSD_DISPLACEMENT)
         return;
-    size_t mid = first + (last - first) / 2, best = first;
-    for (size_t t = first; t <= last; t++)
-        if (present(x + t * stride) &&
-            (t > mid ? t - mid : mid - t) < (best > mid ? best - mid : mid - best))
-            best = t;
+    size_t mid = first + (last - first) / 2;
+    while (!present(x + mid * stride))
+        mid++; /* ends at last at the latest */
     for (size_t c = 0; c < m->ncomp; c++)
-        s->ref[c] = x[best * stride + c];
+        s->ref[c] = x[mid * stride + c];
 }
 
 /* The series value at span frame t: x - ref, or 0 where absent. */
@@ -237,29 +235,30 @@ static void transform_one(mimas_msd *m, const double *x, size_t stride, const sp
     fftw_execute(m->one);
 }
 
-/* The pairs of a particle without gaps, and (displacement) the squares
- * sum_{t <= L-1-k} (x_t^2 + x_{t+k}^2) by the recursion
- * S(0) = 2 sum x^2, S(k) = S(k-1) - x_{k-1}^2 - x_{L-k}^2. */
-static void add_contiguous(mimas_msd *m, const double *x, size_t stride, const span *s)
+/* The pairs of a particle without gaps. */
+static void add_counts(mimas_msd *m, const span *s)
 {
     size_t L = s->len, kmax = L - 1 < m->K ? L - 1 : m->K;
     for (size_t k = 0; k <= kmax; k++)
         m->cnt[k] += (double)(L - k);
-    if (m->kind != MIMAS_MSD_DISPLACEMENT)
-        return;
-    for (size_t c = 0; c < m->ncomp; c++) {
-        double total = 0;
-        for (size_t t = 0; t < L; t++) {
-            double v = value(m, x, stride, s, t, c);
-            m->sq[t] = v * v;
-            total += m->sq[t];
-        }
-        double S = 2 * total, *s1 = m->s1 + c * (m->K + 1);
-        s1[0] += S;
-        for (size_t k = 1; k <= kmax; k++) {
-            S -= m->sq[k - 1] + m->sq[L - k];
-            s1[k] += S;
-        }
+}
+
+/* The squares sum_{t <= L-1-k} (x_t^2 + x_{t+k}^2) of component c of a
+ * particle without gaps, from its series row, by the recursion
+ * S(0) = 2 sum x^2, S(k) = S(k-1) - x_{k-1}^2 - x_{L-k}^2. */
+static void add_squares(mimas_msd *m, const double *row, const span *s, size_t c)
+{
+    size_t L = s->len, kmax = L - 1 < m->K ? L - 1 : m->K;
+    double total = 0;
+    for (size_t t = 0; t < L; t++) {
+        m->sq[t] = row[t] * row[t];
+        total += m->sq[t];
+    }
+    double S = 2 * total, *s1 = m->s1 + c * (m->K + 1);
+    s1[0] += S;
+    for (size_t k = 1; k <= kmax; k++) {
+        S -= m->sq[k - 1] + m->sq[L - k];
+        s1[k] += S;
     }
 }
 
@@ -274,7 +273,7 @@ static void add_block(mimas_msd *m, const double *series, size_t n, size_t strid
         if (!sp[j].len)
             continue;
         if (!sp[j].gaps) {
-            add_contiguous(m, x, stride, &sp[j]);
+            add_counts(m, &sp[j]);
             continue;
         }
         /* the indicator spectrum: counts, and kept for the cross terms */
@@ -291,6 +290,8 @@ static void add_block(mimas_msd *m, const double *series, size_t n, size_t strid
             const double *x = series + j * T * stride;
             for (size_t t = 0; t < sp[j].len; t++)
                 row[t] = value(m, x, stride, &sp[j], t, c);
+            if (sp[j].len && !sp[j].gaps && m->kind == MIMAS_MSD_DISPLACEMENT)
+                add_squares(m, row, &sp[j], c);
         }
         fftw_execute(m->many);
         double *yy = m->acc_yy + c * nc, *mq = m->acc_mq + c * nc;

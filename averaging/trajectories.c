@@ -199,15 +199,13 @@ static void edge_fractions(const mimas_box *b, const double d[3], double f[3])
     f[0] = (d[0] - f[1] * b->xy - f[2] * b->xz) / L[0];
 }
 
-/* Unwraps particle i of the frame into its slot's state; 1 when it was
- * also present in the previous frame (its move is in *move). */
-static int unwrap(mimas_trajectories *t, const mimas_frame *f, size_t i, size_t s, int first,
-                  double move[3])
+/* Unwraps particle i of the frame (box edges e) into its slot's state; 1
+ * when it was also present in the previous frame (its move is in *move). */
+static int unwrap(mimas_trajectories *t, const mimas_frame *f, const double e[3][3], size_t i,
+                  size_t s, int first, double move[3])
 {
     const mimas_particles *p = &f->particles;
     slot_state *st = &t->state[s];
-    double e[3][3];
-    mimas_box_edges(&f->box, e);
     if (t->flags == 1) {
         for (int d = 0; d < 3; d++)
             st->image[d] = p->image[i][d];
@@ -272,6 +270,8 @@ int mimas_traj_add(mimas_trajectories *t, const mimas_frame *f, mimas_error *err
     else if (!images)
         t->flags = 0;
     size_t fr = t->frames;
+    double e[3][3];
+    mimas_box_edges(&f->box, e);
     double inc[3] = {0, 0, 0}, vsum[3] = {0, 0, 0};
     size_t nmove = 0, nsel = 0;
     for (size_t i = 0; i < p->n; i++) {
@@ -282,7 +282,7 @@ int mimas_traj_add(mimas_trajectories *t, const mimas_frame *f, mimas_error *err
             return mimas_error_set(err, MIMAS_EDATA, "particle id %lld appears twice in the "
                                    "frame at time %.10g", (long long)p->id[i], f->time);
         double move[3];
-        nmove += (size_t)unwrap(t, f, i, s, t->is_new[i], move);
+        nmove += (size_t)unwrap(t, f, e, i, s, t->is_new[i], move);
         t->state[s].frame = fr;
         nsel++;
         double *rec = mimas_traj_store_record(t->store, s);
