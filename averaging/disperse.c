@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "disperse_impl.h"
+#include "h5util.h"
 
 /* the default fit window: this share of the longest lag */
 #define FIT_LO_SHARE 0.1
@@ -18,9 +19,9 @@
 /* particles read from the store at once, at most */
 #define MAX_READ_BLOCK 4096
 /* what the libraries take beside the budget (HDF5's caches and free lists,
- * FFTW's plans, code, the reader's frame, the heap's slack): this much plus
- * an eighth of --memory is kept free */
-#define HEADROOM ((size_t)6 << 20)
+ * FFTW's plans, the reader's frame, the heap's slack): this much plus a
+ * quarter of the memory is kept free */
+#define HEADROOM ((size_t)8 << 20)
 
 const char *mimas_disperse_component_name(int c)
 {
@@ -45,11 +46,16 @@ struct mimas_disperse {
     int finished;
 };
 
-/* The bytes disperse may allocate: --memory less the headroom. */
+/* What the process may hold beside the budget. */
+static size_t kept_free(const mimas_disperse_options *o)
+{
+    return o->memory_held + HEADROOM + o->memory / 4;
+}
+
+/* The bytes disperse may allocate: --memory less the rest. */
 static size_t budget(const mimas_disperse_options *o)
 {
-    size_t keep = HEADROOM + o->memory / 8;
-    return o->memory > keep ? o->memory - keep : 0;
+    return o->memory > kept_free(o) ? o->memory - kept_free(o) : 0;
 }
 
 int mimas_disperse_create(mimas_disperse **out, const mimas_disperse_options *o,
@@ -82,10 +88,10 @@ int mimas_disperse_create(mimas_disperse **out, const mimas_disperse_options *o,
     }
     if (!rc)
         rc = mimas_cohorts_create(&d->cohorts, o->cohorts, o->ncohorts, err);
-    if (!rc && o->memory <= HEADROOM + o->memory / 8)
+    if (!rc && o->memory <= kept_free(o))
         rc = mimas_error_set(err, MIMAS_EUSAGE, "--memory %zu bytes leaves nothing for the "
                              "trajectories: give more than %zu", o->memory,
-                             HEADROOM + HEADROOM / 7 + 1);
+                             (o->memory_held + HEADROOM) / 3 * 4 + 1);
     mimas_traj_options to = {d->types, o->ntypes, o->exclude, o->vacf, budget(o), o->scratch_dir};
     if (!rc)
         rc = mimas_traj_create(&d->traj, &to, err);
@@ -126,6 +132,19 @@ size_t mimas_disperse_frames(const mimas_disperse *d)
 const mimas_disperse_result *mimas_disperse_result_of(const mimas_disperse *d)
 {
     return &d->res;
+}
+
+/* What the analysis may allocate besides the trajectories held: --memory
+ * less what the process holds now (as the caller measures it, else what it
+ * held at the start plus the trajectories in memory), the headroom and an
+ * eighth. */
+static size_t analysis_budget(const mimas_disperse *d, const mimas_traj_store *store)
+{
+    const mimas_disperse_options *o = &d->opt;
+    size_t held = o->memory_held + mimas_traj_store_bytes(store);
+    size_t now = o->resident ? o->resident() : 0;
+    size_t keep = (now > held ? now : held) + HEADROOM + o->memory / 8;
+    return o->memory > keep ? o->memory - keep : 0;
 }
 
 /* Everything the sweep needs. */
@@ -184,20 +203,19 @@ static int sweep_init(sweep *s, mimas_disperse *d, mimas_error *err)
                        ((1 + (size_t)vacf) * s->K1 + s->ngroups * (wlags + (vacf ? vlags : 0))) +
                    nc * cohort_stats_bytes(s->T) + 3 * s->K1 * MIMAS_DC_COUNT * sizeof(double);
     size_t per = s->T * (s->rc_n + n * (1 + (size_t)vacf)) * sizeof(double);
-    size_t mem = budget(&d->opt);
-    size_t held = mimas_traj_store_bytes(s->store);
+    size_t mem = analysis_budget(d, s->store);
     int rc = MIMAS_OK;
-    if (held && held + fixed + MIMAS_MSD_BLOCK * per > mem) {
+    if (mimas_traj_store_bytes(s->store) && fixed + MIMAS_MSD_BLOCK * per > mem) {
         rc = mimas_traj_store_spill(s->store, err);
-        held = mimas_traj_store_bytes(s->store);
+        mem = analysis_budget(d, s->store);
     }
     if (rc)
         return rc;
-    if (held + fixed + per > mem)
+    if (fixed + per > mem)
         return mimas_error_set(err, MIMAS_EUSAGE, "--memory %zu bytes is too small for the "
                                "analysis of %zu frames: give at least %zu", d->opt.memory, s->T,
-                               (fixed + per + HEADROOM) / 7 * 8 + 1);
-    size_t b = (mem - held - fixed) / per;
+                               d->opt.memory + (fixed + per - mem) / 7 * 8 + 1);
+    size_t b = (mem - fixed) / per;
     b = b > MAX_READ_BLOCK ? MAX_READ_BLOCK : b;
     if (b >= MIMAS_MSD_BLOCK)
         b -= b % MIMAS_MSD_BLOCK;
@@ -359,6 +377,8 @@ int mimas_disperse_finish(mimas_disperse *d, mimas_error *err)
         return MIMAS_OK;
     d->finished = 1;
     int rc = mimas_traj_finish(d->traj, err);
+    /* what reading left in HDF5's free lists, back to the heap for the analysis */
+    h5_release_free_lists();
     if (!rc)
         rc = plan(d, err);
     sweep s;

@@ -61,7 +61,11 @@ typedef struct mimas_disperse_options {
     const int32_t *types;        /* particle selection */
     size_t ntypes;
     int exclude;
-    size_t memory;               /* bytes for trajectories and transforms */
+    size_t memory;               /* bytes the process may hold at its peak */
+    size_t memory_held;          /* of those, held already (code, libraries) */
+    /* the process's resident bytes now (may be NULL): the analysis budgets
+     * from what is held when it starts */
+    size_t (*resident)(void);
     const char *scratch_dir;     /* where a scratch file goes */
     /* called now and then during the analysis (may be NULL) */
     void (*progress)(void *ctx, size_t particles_done, size_t particles);

@@ -14,11 +14,13 @@
 
 /* frames per chunk at most, and the share of the memory one chunk may take */
 #define MAX_CHUNK_FRAMES 128
-#define CHUNK_SHARE 16
+#define CHUNK_SHARE 8
 /* slots per chunk of the scratch dataset (the reads take blocks of slots) */
 #define DISK_CHUNK_SLOTS 16
-/* HDF5's chunk cache of the scratch dataset */
-#define DISK_CACHE_BYTES (1u << 20)
+/* slots a write call takes */
+#define WRITE_SLOTS (64 * DISK_CHUNK_SLOTS)
+/* HDF5's metadata cache of the scratch file (its chunk index), at most */
+#define METADATA_CACHE_BYTES ((size_t)2 << 20)
 
 typedef struct chunk {
     size_t t0;       /* first frame */
@@ -93,7 +95,21 @@ static int open_disk(mimas_traj_store *s, mimas_error *err)
                                strerror(errno));
     close(fd);
     h5_quiet_begin(&s->quiet);
-    s->file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    /* the chunk index of a long run has many nodes: a bounded metadata cache
+     * (HDF5 lets it grow to 32 MB) writes them out instead of keeping them */
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    H5AC_cache_config_t mdc;
+    memset(&mdc, 0, sizeof mdc);
+    mdc.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+    if (H5Pget_mdc_config(fapl, &mdc) >= 0) {
+        mdc.set_initial_size = 1;
+        mdc.initial_size = METADATA_CACHE_BYTES / 2;
+        mdc.min_size = METADATA_CACHE_BYTES / 4;
+        mdc.max_size = METADATA_CACHE_BYTES;
+        H5Pset_mdc_config(fapl, &mdc);
+    }
+    s->file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    H5Pclose(fapl);
     /* from here on the file lives only through the open handle */
     unlink(path);
     if (s->file < 0) {
@@ -111,6 +127,27 @@ static int open_disk(mimas_traj_store *s, mimas_error *err)
     return MIMAS_OK;
 }
 
+/* Slots [a, a + n) of chunk c into the dataset (extent already set). */
+static int write_slots(mimas_traj_store *s, const chunk *c, size_t a, size_t n)
+{
+    hsize_t mdims[3] = {c->nslots, c->cap, s->ncomp};
+    hsize_t mstart[3] = {a, 0, 0}, start[3] = {a, c->t0, 0};
+    hsize_t count[3] = {n, c->nframes, s->ncomp};
+    int rc = 0;
+    hid_t fs = H5Dget_space(s->dset);
+    hid_t ms = H5Screate_simple(3, mdims, NULL);
+    if (fs < 0 || H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL) < 0 ||
+        H5Sselect_hyperslab(ms, H5S_SELECT_SET, mstart, NULL, count, NULL) < 0 ||
+        H5Dwrite(s->dset, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, c->data) < 0)
+        rc = -1;
+    if (fs >= 0)
+        H5Sclose(fs);
+    H5Sclose(ms);
+    return rc;
+}
+
+/* A chunk into the dataset, WRITE_SLOTS slots a call (HDF5 keeps a record
+ * of every dataset chunk a call touches). */
 static int write_chunk(mimas_traj_store *s, const chunk *c, mimas_error *err)
 {
     if (!c->nframes || !c->nslots)
@@ -118,22 +155,12 @@ static int write_chunk(mimas_traj_store *s, const chunk *c, mimas_error *err)
     size_t slots = c->nslots > s->disk_slots ? c->nslots : s->disk_slots;
     size_t frames = c->t0 + c->nframes > s->disk_frames ? c->t0 + c->nframes : s->disk_frames;
     hsize_t ext[3] = {slots, frames, s->ncomp};
-    hsize_t mdims[3] = {c->nslots, c->cap, s->ncomp};
-    hsize_t zero[3] = {0, 0, 0}, start[3] = {0, c->t0, 0};
-    hsize_t count[3] = {c->nslots, c->nframes, s->ncomp};
     int rc = 0;
     h5_quiet_begin(&s->quiet);
     if (H5Dset_extent(s->dset, ext) < 0)
         rc = -1;
-    hid_t fs = rc ? -1 : H5Dget_space(s->dset);
-    hid_t ms = H5Screate_simple(3, mdims, NULL);
-    if (fs < 0 || H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL) < 0 ||
-        H5Sselect_hyperslab(ms, H5S_SELECT_SET, zero, NULL, count, NULL) < 0 ||
-        H5Dwrite(s->dset, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, c->data) < 0)
-        rc = -1;
-    if (fs >= 0)
-        H5Sclose(fs);
-    H5Sclose(ms);
+    for (size_t a = 0; a < c->nslots && !rc; a += WRITE_SLOTS)
+        rc = write_slots(s, c, a, c->nslots - a < WRITE_SLOTS ? c->nslots - a : WRITE_SLOTS);
     h5_quiet_end(&s->quiet);
     if (rc)
         return h5_fail(s, "write to it (is the disk full?)", err);
@@ -309,6 +336,8 @@ size_t mimas_traj_store_bytes(const mimas_traj_store *s)
     return s->kept_bytes + (s->cur.data ? chunk_bytes(s, s->cur.nslots, s->cur.cap) : 0);
 }
 
+/* Slots first .. first+n-1 (all on disk) into out[n][T][ncomp], a row of
+ * dataset chunks a call. */
 static int read_disk(mimas_traj_store *s, size_t first, size_t n, double *out, mimas_error *err)
 {
     size_t T = s->frames, have = first < s->disk_slots ? s->disk_slots - first : 0;
@@ -316,19 +345,22 @@ static int read_disk(mimas_traj_store *s, size_t first, size_t n, double *out, m
         have = n;
     if (!have || !s->disk_frames)
         return MIMAS_OK;
-    hsize_t start[3] = {first, 0, 0}, count[3] = {have, s->disk_frames, s->ncomp};
-    hsize_t mdims[3] = {n, T, s->ncomp}, zero[3] = {0, 0, 0};
     int rc = 0;
     h5_quiet_begin(&s->quiet);
-    hid_t fs = H5Dget_space(s->dset);
-    hid_t ms = H5Screate_simple(3, mdims, NULL);
-    if (fs < 0 || H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL) < 0 ||
-        H5Sselect_hyperslab(ms, H5S_SELECT_SET, zero, NULL, count, NULL) < 0 ||
-        H5Dread(s->dset, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, out) < 0)
-        rc = -1;
-    if (fs >= 0)
-        H5Sclose(fs);
-    H5Sclose(ms);
+    for (size_t a = 0; a < have && !rc; a += DISK_CHUNK_SLOTS) {
+        size_t m = have - a < DISK_CHUNK_SLOTS ? have - a : DISK_CHUNK_SLOTS;
+        hsize_t start[3] = {first + a, 0, 0}, count[3] = {m, s->disk_frames, s->ncomp};
+        hsize_t mdims[3] = {m, T, s->ncomp}, zero[3] = {0, 0, 0};
+        hid_t fs = H5Dget_space(s->dset);
+        hid_t ms = H5Screate_simple(3, mdims, NULL);
+        if (fs < 0 || H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL) < 0 ||
+            H5Sselect_hyperslab(ms, H5S_SELECT_SET, zero, NULL, count, NULL) < 0 ||
+            H5Dread(s->dset, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, out + a * T * s->ncomp) < 0)
+            rc = -1;
+        if (fs >= 0)
+            H5Sclose(fs);
+        H5Sclose(ms);
+    }
     h5_quiet_end(&s->quiet);
     return rc ? h5_fail(s, "read from it", err) : MIMAS_OK;
 }

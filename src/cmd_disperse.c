@@ -7,11 +7,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "commands.h"
 #include "disperse.h"
 #include "fit.h"
+#include "h5util.h"
 #include "plot.h"
 #include "reader.h"
 
@@ -40,9 +42,9 @@ static const cli_option options[] = {
                       "spaced)"},
     {"types", 0, "L", "use only particles of these types (comma list)"},
     {"exclude-types", 0, "L", "leave out particles of these types"},
-    {"memory", 0, "BYTES", "memory for trajectories and transforms, with suffix k, M or G "
-                           "(default: a quarter of the RAM); beyond it the trajectories go to a "
-                           "scratch file next to the output"},
+    {"memory", 0, "BYTES", "the peak memory of the run, with suffix k, M or G (default: a "
+                           "quarter of the RAM); trajectories beyond it go to a scratch file "
+                           "next to the output"},
     {"output", 'o', "OUT.h5", "write every table to HDF5 with units and definitions"},
     {"tsv", 0, "FILE", "write the MSD table to FILE, or - for standard output (the default "
                        "without -o)"},
@@ -184,6 +186,21 @@ static void scratch_folder(const disperse_args *a, char *dir, size_t len)
             snprintf(dir, len, "%.*s", (int)(slash - paths[k]), paths[k]);
         return;
     }
+}
+
+/* The resident memory the process holds now (Linux: /proc/self/statm;
+ * elsewhere the peak so far). */
+static size_t resident_now(void)
+{
+    FILE *fp = fopen("/proc/self/statm", "r");
+    unsigned long size, pages;
+    int got = fp && fscanf(fp, "%lu %lu", &size, &pages) == 2;
+    if (fp)
+        fclose(fp);
+    if (got)
+        return (size_t)pages * (size_t)sysconf(_SC_PAGESIZE);
+    struct rusage u;
+    return getrusage(RUSAGE_SELF, &u) == 0 ? (size_t)u.ru_maxrss * 1024 : 0;
 }
 
 static size_t quarter_of_ram(void)
@@ -386,6 +403,11 @@ static int run(const cli_command *cmd, int argc, char **argv)
     a.o.scratch_dir = scratch[0] ? scratch : NULL;
     if (!a.memory_given)
         a.o.memory = quarter_of_ram();
+    /* --memory bounds the whole process, with what it holds already */
+    a.o.memory_held = resident_now();
+    a.o.resident = resident_now;
+    /* HDF5's own free lists within the headroom --memory leaves */
+    h5_limit_free_lists((size_t)2 << 20);
     cli_progress prog;
     cli_progress_start(&prog, &in);
     void *pair[2] = {&prog, (void *)cmd};

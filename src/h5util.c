@@ -4,6 +4,9 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <string.h>
 
 void h5_quiet_begin(h5_quiet *q)
@@ -217,6 +220,22 @@ int h5_write_doubles(hid_t loc, const char *name, int rank, const hsize_t *dims,
         H5Dclose(ds);
     H5Sclose(s);
     return rc;
+}
+
+void h5_release_free_lists(void)
+{
+    H5garbage_collect();
+#ifdef __GLIBC__
+    /* and the heap's free pages back to the system */
+    malloc_trim(0);
+#endif
+}
+
+void h5_limit_free_lists(size_t bytes)
+{
+    int all = bytes / 3 > 0x7fffffff ? 0x7fffffff : (int)(bytes / 3), one = all / 4;
+    /* regular, array and block lists: a third each, a quarter of that per list */
+    H5set_free_list_limits(all, one, all, one, all, one);
 }
 
 int h5_write_strs(hid_t loc, const char *name, const char *const *values, size_t n,

@@ -626,15 +626,15 @@ static void test_tube_axis_and_errors(void **state)
     o.memory = 6u << 20;
     assert_int_equal(mimas_disperse_create(&d, &o, &err), MIMAS_EUSAGE);
     assert_non_null(strstr(err.msg, "--memory 6291456 bytes leaves nothing"));
-    /* 7 MB leave some 130 kB: the transforms of 3000 frames need more */
-    o.memory = 7u << 20;
+    /* 16 MB leave 4 MB: the transforms of 30000 frames need more */
+    o.memory = 16u << 20;
     assert_int_equal(mimas_disperse_create(&d, &o, &err), MIMAS_OK);
-    for (int t = 0; t < 3000; t++) {
+    for (int t = 0; t < 30000; t++) {
         f.time = t;
         assert_int_equal(mimas_disperse_add(d, &f, &err), MIMAS_OK);
     }
     assert_int_equal(mimas_disperse_finish(d, &err), MIMAS_EUSAGE);
-    assert_non_null(strstr(err.msg, "too small for the analysis of 3000 frames"));
+    assert_non_null(strstr(err.msg, "too small for the analysis of 30000 frames"));
     mimas_disperse_free(d);
     mimas_frame_free(&f);
     o.memory = 1u << 20;
