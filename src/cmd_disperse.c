@@ -343,34 +343,36 @@ static void warnings(const disperse_args *a, const cli_inputs *in,
                 "file in %s (removed)\n", name, scratch[0] ? scratch : "$TMPDIR or /tmp");
 }
 
-/* Every output: tables under temporary names, the plot, the HDF5 file;
- * nothing is left of any if one fails. */
+/* Every output: the plot and the HDF5 file first, then the tables (under
+ * temporary names; one on standard output comes last of all); nothing is
+ * left of any if one fails. */
 static int write_outputs(const disperse_args *a, const mimas_disperse_result *r, int argc,
                          char **argv, mimas_error *err)
 {
-    const char *paths[3] = {a->tsv, a->cohort_table, a->diffusion_table};
-    void (*writers[3])(FILE *, const void *) = {write_lags, write_cohorts, write_diffusion};
-    cli_output outs[3];
-    memset(outs, 0, sizeof outs);
-    int rc = MIMAS_OK;
-    for (int k = 0; k < 3 && !rc; k++) {
-        if (!paths[k])
-            continue;
-        rc = cli_output_open(&outs[k], paths[k], err);
-        if (!rc) {
-            writers[k](outs[k].fp, r);
-            if (ferror(outs[k].fp))
-                rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", paths[k]);
-        }
-    }
-    int plotted = 0, written = 0;
-    if (!rc && a->plot)
+    int rc = MIMAS_OK, plotted = 0, written = 0;
+    if (a->plot)
         plotted = !(rc = mimas_disperse_plot(r, a->plot, err));
     if (!rc && a->output) {
         char *line = cli_command_line(argc, argv);
         written = !(rc = mimas_disperse_write_h5(r, a->output, line, err));
         free(line);
     }
+    const char *paths[3] = {a->tsv, a->cohort_table, a->diffusion_table};
+    void (*writers[3])(FILE *, const void *) = {write_lags, write_cohorts, write_diffusion};
+    cli_output outs[3];
+    memset(outs, 0, sizeof outs);
+    /* the files first, standard output last */
+    for (int pass = 0; pass < 2; pass++)
+        for (int k = 0; k < 3 && !rc; k++) {
+            if (!paths[k] || is_stdout(paths[k]) != pass)
+                continue;
+            rc = cli_output_open(&outs[k], paths[k], err);
+            if (!rc) {
+                writers[k](outs[k].fp, r);
+                if (ferror(outs[k].fp))
+                    rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", paths[k]);
+            }
+        }
     int ok = rc == MIMAS_OK;
     for (int k = 0; k < 3; k++) {
         int closed = cli_output_close(&outs[k], ok, err);

@@ -2,7 +2,9 @@
  * faces many times, by image flags and by the minimum image, orthogonal
  * and tilted boxes, against the straight lines the particles were moved on;
  * the quarter-box count; equal frame spacing; slots of inserted and removed
- * particles, repeated ids, missing quantities; the drift. */
+ * particles, repeated ids, missing quantities; the drift.  The store holds
+ * the same records in memory and through its scratch file (slots growing,
+ * chunks ended early), and spills on demand. */
 #include <config.h>
 
 #include <setjmp.h>
@@ -355,6 +357,82 @@ static void test_drift(void **state)
     mimas_traj_free(t);
 }
 
+/* record value of slot s at frame t, component c (slot s exists from frame s / 3 on) */
+static double record_value(size_t s, size_t t, size_t c) { return 1000.0 * s + t + 0.25 * c; }
+
+static void fill_store(mimas_traj_store *st, size_t frames)
+{
+    mimas_error err;
+    for (size_t t = 0; t < frames; t++) {
+        size_t n = 3 * t + 3 < 400 ? 3 * t + 3 : 400;
+        assert_int_equal(mimas_traj_store_next_frame(st, n, &err), MIMAS_OK);
+        for (size_t s = 0; s < n; s++) {
+            if ((s + t) % 11 == 0)
+                continue; /* absent now and then */
+            double *r = mimas_traj_store_record(st, s);
+            for (size_t c = 0; c < 2; c++)
+                r[c] = record_value(s, t, c);
+        }
+    }
+    assert_int_equal(mimas_traj_store_finish(st, &err), MIMAS_OK);
+}
+
+static void check_store(mimas_traj_store *st, size_t frames)
+{
+    mimas_error err;
+    assert_int_equal(mimas_traj_store_frames(st), frames);
+    assert_int_equal(mimas_traj_store_slots(st), 400);
+    double *out = malloc(37 * frames * 2 * sizeof *out);
+    for (size_t a = 0; a < 400; a += 37) {
+        size_t n = 400 - a < 37 ? 400 - a : 37;
+        assert_int_equal(mimas_traj_store_read(st, a, n, out, &err), MIMAS_OK);
+        for (size_t j = 0; j < n; j++)
+            for (size_t t = 0; t < frames; t++) {
+                size_t s = a + j;
+                const double *r = out + (j * frames + t) * 2;
+                int there = s < 3 * t + 3 && (s + t) % 11 != 0;
+                for (size_t c = 0; c < 2; c++)
+                    if (there)
+                        assert_true(r[c] == record_value(s, t, c));
+                    else
+                        assert_true(isnan(r[c]));
+            }
+    }
+    free(out);
+}
+
+static void test_store_memory_and_disk(void **state)
+{
+    (void)state;
+    mimas_error err;
+    /* 300 frames of up to 400 slots of 2 values: 1.9 MB of records */
+    const size_t sizes[3] = {64u << 20, 256u << 10, 20u << 10};
+    for (int k = 0; k < 3; k++) {
+        mimas_traj_store_options o = {2, sizes[k], NULL};
+        mimas_traj_store *st;
+        assert_int_equal(mimas_traj_store_create(&st, &o, &err), MIMAS_OK);
+        fill_store(st, 300);
+        assert_int_equal(mimas_traj_store_on_disk(st), k > 0);
+        check_store(st, 300);
+        if (k == 0) {
+            /* held in memory, then moved out on demand */
+            assert_true(mimas_traj_store_bytes(st) >= 400 * 2 * 8 * 200);
+            assert_int_equal(mimas_traj_store_spill(st, &err), MIMAS_OK);
+            assert_true(mimas_traj_store_on_disk(st));
+            assert_int_equal(mimas_traj_store_bytes(st), 0);
+            check_store(st, 300);
+        }
+        mimas_traj_store_free(st);
+    }
+    /* too little memory for one frame */
+    mimas_traj_store_options o = {2, 1000, NULL};
+    mimas_traj_store *st;
+    assert_int_equal(mimas_traj_store_create(&st, &o, &err), MIMAS_OK);
+    assert_int_equal(mimas_traj_store_next_frame(st, 100, &err), MIMAS_EUSAGE);
+    assert_non_null(strstr(err.msg, "cannot hold one frame of 100 particles"));
+    mimas_traj_store_free(st);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -367,6 +445,7 @@ int main(void)
         cmocka_unit_test(test_slots),
         cmocka_unit_test(test_bad_ids_and_quantities),
         cmocka_unit_test(test_drift),
+        cmocka_unit_test(test_store_memory_and_disk),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
