@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_table.h"
 #include "cli_frames.h"
 #include "commands.h"
 #include "native.h"
@@ -35,10 +36,11 @@ static const cli_option options[] = {
     {"from", 0, "T0", "first time to use (s)"},
     {"to", 0, "T1", "last time to use (s)"},
     {"every", 0, "K", "use every K-th frame of those selected"},
+    CLI_TABLE_OPTIONS,
 };
 
 enum { O_RADICAL, O_WALLS, O_EXTENT, O_VWIDTH, O_EXCLUDE, O_OUTPUT, O_TSV, O_THREADS, O_FROM,
-       O_TO, O_EVERY };
+       O_TO, O_EVERY, O_TABLE };
 
 #define MAX_WALLS 16
 
@@ -48,6 +50,7 @@ typedef struct voronoi_args {
     mimas_voro_wall walls[MAX_WALLS];
     int32_t types[64];
     const char *tsv, *output;
+    cli_table_options table;
     cli_window window;
 } voronoi_args;
 
@@ -83,21 +86,31 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_FROM:
     case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
     case O_EVERY: return cli_window_every(a->cmd, &a->window, arg);
+    default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
-    return 1;
 }
 
-static void print_value(FILE *out, double v)
+static void write_header(cli_table *t)
 {
-    if (isnan(v))
-        fputs("\tnan", out);
-    else
-        fprintf(out, "\t%.17g", v);
+    static const struct {
+        const char *name, *unit;
+    } cols[] = {{"step", NULL}, {"id", NULL}, {"x", "m"}, {"y", "m"}, {"z", "m"},
+                {"volume", "m3"}, {"nu", "1"}, {"faces", NULL}, {"surface", NULL}};
+    for (size_t k = 0; k < sizeof cols / sizeof cols[0]; k++)
+        cli_table_column(t, cols[k].name, cols[k].unit);
+    static const char *const ab = "xyz";
+    for (int m = 0; m < 9; m++) {
+        char name[16];
+        snprintf(name, sizeof name, "stress_%c%c", ab[m / 3], ab[m % 3]);
+        cli_table_column(t, name, "Pa");
+    }
+    cli_table_header_end(t);
 }
 
 /* Rows "step id x y z volume nu faces surface stress_xx .. stress_zz" of the
  * reported particles. */
-static int write_rows(const mimas_voronoi *v, const mimas_frame *f, FILE *out, mimas_error *err)
+static int write_rows(const mimas_voronoi *v, const mimas_frame *f, cli_table *t,
+                      mimas_error *err)
 {
     const mimas_particles *p = &f->particles;
     mimas_voronoi_values val;
@@ -105,17 +118,19 @@ static int write_rows(const mimas_voronoi *v, const mimas_frame *f, FILE *out, m
     for (size_t k = 0; k < p->n; k++) {
         if (!mimas_voronoi_reported(v, p, k))
             continue;
-        fprintf(out, "%lld\t%lld", (long long)f->step, (long long)p->id[k]);
+        cli_table_int(t, (long long)f->step);
+        cli_table_int(t, (long long)p->id[k]);
         for (int d = 0; d < 3; d++)
-            print_value(out, p->pos[k][d]);
-        print_value(out, val.volume[k]);
-        print_value(out, val.nu[k]);
-        fprintf(out, "\t%d\t%d", (int)val.faces[k], (int)val.surface[k]);
+            cli_table_double(t, p->pos[k][d]);
+        cli_table_double(t, val.volume[k]);
+        cli_table_double(t, val.nu[k]);
+        cli_table_int(t, (long long)val.faces[k]);
+        cli_table_int(t, (long long)val.surface[k]);
         for (int m = 0; m < 9; m++)
-            print_value(out, val.stress ? val.stress[9 * k + (size_t)m] : NAN);
-        fputc('\n', out);
+            cli_table_double(t, val.stress ? val.stress[9 * k + (size_t)m] : NAN);
+        cli_table_row_end(t);
     }
-    return ferror(out) ? mimas_error_set(err, MIMAS_EIO, "cannot write the table") : MIMAS_OK;
+    return ferror(t->fp) ? mimas_error_set(err, MIMAS_EIO, "cannot write the table") : MIMAS_OK;
 }
 
 /* ---- one frame's result, written on rank 0 in frame order ---- */
@@ -125,25 +140,35 @@ typedef struct voronoi_sink {
     mimas_frame frame;  /* a frame unpacked from a result */
 } voronoi_sink;
 
+/* What a frame's result holds: its table rows (formatted as the table's
+ * options say), its frame with the Voronoi columns. */
+typedef struct result_parts {
+    int rows, frame;
+    const cli_table_options *table;
+} result_parts;
+
 /* A frame's result: the length of its table rows, the rows, then the packed
- * frame with its Voronoi columns (each part empty when not wanted). */
-static int pack_result(const mimas_voronoi *v, const mimas_frame *f, int rows, int frame,
+ * frame (each part empty when not wanted). */
+static int pack_result(const mimas_voronoi *v, const mimas_frame *f, const result_parts *parts,
                        mimas_bytes *out, mimas_error *err)
 {
     char *text = NULL;
     size_t len = 0;
-    if (rows) {
+    if (parts->rows) {
         FILE *m = open_memstream(&text, &len);
         if (!m)
             return mimas_error_set(err, MIMAS_EIO, "out of memory");
-        int rc = write_rows(v, f, m, err);
-        if (fclose(m) || rc) {
+        cli_table t;
+        cli_table_start(&t, m, parts->table);
+        int rc = write_rows(v, f, &t, err);
+        int bad = cli_table_end(&t);
+        if (fclose(m) || rc || bad) {
             free(text);
             return rc ? rc : mimas_error_set(err, MIMAS_EIO, "out of memory");
         }
     }
     mimas_bytes packed = {0};
-    int rc = frame ? mimas_frame_pack(f, &packed, err) : MIMAS_OK;
+    int rc = parts->frame ? mimas_frame_pack(f, &packed, err) : MIMAS_OK;
     uint64_t n = len;
     size_t total = sizeof n + len + packed.n;
     if (!rc && total > out->cap) {
@@ -216,16 +241,19 @@ static int run(const cli_command *cmd, int argc, char **argv)
     int status = MIMAS_OK;
     if (root && (a.tsv || !a.output))
         status = cli_output_open(&table, a.tsv, &err);
-    voronoi_sink sink = {table.fp, NULL, {0}};
+    FILE *out = table.fp;
+    cli_table tw;
+    cli_table_start(&tw, out, &a.table);
+    if (out)
+        write_header(&tw);
+    voronoi_sink sink = {out, NULL, {0}};
     mimas_frame_init(&sink.frame);
-    if (sink.out)
-        fputs("step\tid\tx\ty\tz\tvolume\tnu\tfaces\tsurface\tstress_xx\tstress_xy\tstress_xz\t"
-              "stress_yx\tstress_yy\tstress_yz\tstress_zx\tstress_zy\tstress_zz\n", sink.out);
     char *provenance = cli_command_line(argc, argv);
     if (!status && root && a.output) {
         mimas_writer_options wo;
         mimas_writer_options_default(&wo);
         wo.atomic = 1; /* no partial output */
+        wo.xdmf = 1;
         wo.provenance = provenance;
         status = mimas_writer_open(&sink.w, a.output, &wo, &err);
     }
@@ -233,7 +261,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (!status)
         status = mimas_par_ordered_open(&order, write_frame, &sink, &err);
     status = mimas_par_agree(status, SIZE_MAX, &err);
-    int want_rows = a.tsv || !a.output, want_frames = a.output != NULL;
+    result_parts parts = {a.tsv || !a.output, a.output != NULL, &a.table};
     mimas_frame f;
     mimas_frame_init(&f);
     mimas_bytes result = {0};
@@ -246,7 +274,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
         if (status && status != MIMAS_EIO)
             mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
         if (!status)
-            status = pack_result(vor, &f, want_rows, want_frames, &result, &err);
+            status = pack_result(vor, &f, &parts, &result, &err);
         if (!status)
             status = mimas_par_ordered_put(order, frames.position, &result, &err);
         cli_progress_frame(&prog, cmd, frames.position + 1, (long long)f.step, f.time);
@@ -273,6 +301,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
         }
     }
     free(provenance);
+    cli_table_end(&tw);
     int closed = cli_output_close(&table, status == MIMAS_END, &err);
     if (closed)
         status = closed;

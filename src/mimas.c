@@ -17,6 +17,8 @@ static const cli_command *const commands[] = {
     &cmd_simulate,
     &cmd_shearband,
     &cmd_rheology,
+    &cmd_xdmf,
+    &cmd_disperse,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 
