@@ -10,6 +10,7 @@
 
 #include "average.h"
 #include "commands.h"
+#include "numfmt.h"
 #include "output_h5.h"
 #include "fields.h"
 #include "reader.h"
@@ -127,13 +128,27 @@ static int choose_fields(average_args *a, int cyl, unsigned char *want)
     return rc;
 }
 
-/* Full precision; "nan" where a field is undefined (docs/fields.md). */
-static void print_value(FILE *out, const char *sep, double v)
+/* A row being built: values appended as the shortest text that reads back as
+ * the same double ("nan" where a field is undefined, docs/fields.md). */
+typedef struct row_buf {
+    char *text;
+    size_t len, cap;
+} row_buf;
+
+static int row_value(row_buf *r, int first, double v)
 {
-    if (isnan(v))
-        fprintf(out, "%snan", sep);
-    else
-        fprintf(out, "%s%.17g", sep, v);
+    if (r->len + MIMAS_NUMFMT_MAX + 1 > r->cap) {
+        size_t cap = r->cap ? 2 * r->cap : 4096;
+        char *t = realloc(r->text, cap);
+        if (!t)
+            return -1;
+        r->text = t;
+        r->cap = cap;
+    }
+    if (!first)
+        r->text[r->len++] = '\t';
+    r->len += mimas_format_double(v, r->text + r->len);
+    return 0;
 }
 
 static void write_header(FILE *out, const mimas_grid *g, int grid_none, int cyl,
@@ -170,32 +185,45 @@ static int write_rows(FILE *out, const mimas_average *avg, int grid_none,
     double *mean = malloc(cells * nf * sizeof *mean), *sd = malloc(cells * nf * sizeof *sd),
            *count = malloc(cells * nf * sizeof *count);
     int rc = mean && sd && count ? mimas_average_fields(avg, mean, sd, count) : -1;
+    row_buf r = {NULL, 0, 0};
     for (size_t cell = 0; !rc && cell < cells; cell++) {
         double ctr[3];
         if (!grid_none)
             mimas_grid_cell_centre(g, cell, ctr);
-        const char *sep = "";
+        int first = 1;
+        r.len = 0;
         if (frame) {
-            fprintf(out, "%lld", (long long)frame->step);
-            print_value(out, "\t", frame->time);
-            sep = "\t";
+            char step[32];
+            int n = snprintf(step, sizeof step, "%lld", (long long)frame->step);
+            if (row_value(&r, 1, 0.0))
+                rc = -1;
+            if (!rc) {
+                memcpy(r.text, step, (size_t)n);
+                r.len = (size_t)n;
+                rc = row_value(&r, 0, frame->time);
+            }
+            first = 0;
         }
-        for (int d = 0; d < 3 && !grid_none; d++)
+        for (int d = 0; d < 3 && !grid_none && !rc; d++)
             if (g->gridded[d]) {
-                print_value(out, sep, ctr[d]);
-                sep = "\t";
+                rc = row_value(&r, first, ctr[d]);
+                first = 0;
             }
         const double *m = &mean[cell * nf], *s = &sd[cell * nf], *n = &count[cell * nf];
-        for (size_t k = 0; k < nf; k++) {
+        for (size_t k = 0; k < nf && !rc; k++) {
             if (!want[k])
                 continue;
-            print_value(out, sep, m[k]);
-            sep = "\t";
-            if (errors)
-                print_value(out, sep, n[k] > 1 ? s[k] / sqrt(n[k]) : NAN);
+            rc = row_value(&r, first, m[k]);
+            first = 0;
+            if (!rc && errors)
+                rc = row_value(&r, 0, n[k] > 1 ? s[k] / sqrt(n[k]) : NAN);
         }
-        fputc('\n', out);
+        if (!rc) {
+            r.text[r.len++] = '\n';
+            fwrite(r.text, 1, r.len, out);
+        }
     }
+    free(r.text);
     free(mean);
     free(sd);
     free(count);

@@ -343,6 +343,63 @@ static void test_gauss_integrates_mass(void **state)
     gsl_rng_free(rng);
 }
 
+/* The contact stress on an x-y-z grid is f (x) b times the exact line integral at
+ * each cell centre (mimas_kernel_line, itself checked against quadrature in
+ * test_weight), for branches shorter and longer than w, both kernels. */
+static void test_gauss_contact_cells(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    const char *specs[2] = {"gauss:w=0.001", "gauss:w=0.0008,shift,cutoff=2.5"};
+    const double lens[4] = {0.0003, 0.001, 0.0019, 0.0042};
+    for (int k = 0; k < 2; k++)
+        for (int l = 0; l < 4; l++) {
+            double pos[2][3];
+            for (int d = 0; d < 3; d++)
+                pos[0][d] = 0.004 + 0.002 * gsl_rng_uniform(rng);
+            double dir[3], nn = 0;
+            for (int d = 0; d < 3; d++) {
+                dir[d] = gsl_rng_uniform(rng) - 0.5;
+                nn += dir[d] * dir[d];
+            }
+            for (int d = 0; d < 3; d++)
+                pos[1][d] = pos[0][d] + lens[l] * dir[d] / sqrt(nn);
+            mimas_box box = {{0, 0, 0}, {0.01, 0.01, 0.01}, 0, 0, 0, {0, 0, 0}};
+            mimas_frame f;
+            mimas_frame_init(&f);
+            make_frame(&f, 2, (const double (*)[3])pos, 0.0005, still, &box);
+            mimas_error err;
+            mimas_table_set_present(&f.contacts, &mimas_contacts_desc, MIMAS_C_FORCE, &err);
+            mimas_table_resize(&f.contacts, &mimas_contacts_desc, 1, &err);
+            f.has_contacts = 1;
+            f.contacts.i[0] = 1;
+            f.contacts.j[0] = 0;
+            double F[3] = {0.3, -0.7, 1.1};
+            memcpy(f.contacts.force[0], F, sizeof F);
+            mimas_average *av = average_frame(&f, "x=0:0.01:23,y=0:0.01:21,z=0:0.01:25", specs[k]);
+            mimas_weight wt;
+            assert_int_equal(mimas_weight_parse(&wt, specs[k], &err), 0);
+            const mimas_grid *g = mimas_average_grid(av);
+            double S[NSUMS], peak = wt.coef, bv[3];
+            for (int d = 0; d < 3; d++)
+                bv[d] = pos[1][d] - pos[0][d];
+            for (size_t c = 0; c < mimas_grid_cells(g); c++) {
+                double ctr[3], dd[3];
+                mimas_grid_cell_centre(g, c, ctr);
+                for (int d = 0; d < 3; d++)
+                    dd[d] = ctr[d] - pos[0][d];
+                double psi = mimas_kernel_line(&wt, dd, bv);
+                mimas_average_sums(av, c, S);
+                /* |f (x) b| ~ 1e-3 N m */
+                assert_close(S[S_C + 0 * 3 + 1], F[0] * bv[1] * psi, 1e-17 * peak);
+                assert_close(S[S_C + 2 * 3 + 2], F[2] * bv[2] * psi, 1e-17 * peak);
+            }
+            mimas_average_free(av);
+            mimas_frame_free(&f);
+        }
+    gsl_rng_free(rng);
+}
+
 /* The test's own marginal of the plain cut Gaussian over x and y:
  * int 2 pi rho phi(sqrt(z^2 + rho^2)) drho, by GSL. */
 static double MZ_W, MZ_Z;
@@ -818,6 +875,7 @@ int main(void)
         cmocka_unit_test(test_simple_cubic_solid_fraction),
         cmocka_unit_test(test_gauss_integrates_mass),
         cmocka_unit_test(test_gauss_profile_is_marginal),
+        cmocka_unit_test(test_gauss_contact_cells),
         cmocka_unit_test(test_rigid_rotation),
         cmocka_unit_test(test_couette_shear_rate),
         cmocka_unit_test(test_simple_shear),
