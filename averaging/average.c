@@ -226,6 +226,15 @@ static void add_particle(double *S0, const mimas_weights *ws, const particle_val
     }
 }
 
+static void add_contact(double *S0, const mimas_weights *ws, const double q[18])
+{
+    for (size_t k = 0; k < ws->n; k++) {
+        double *S = S0 + ws->cell[k] * NSUMS + S_C, w = ws->w[k];
+        for (int m = 0; m < 18; m++)
+            S[m] += q[m] * w;
+    }
+}
+
 /* One contact's stress and fabric: f acting on the particle at the end of
  * branch b, the segment from `from` to from + b. */
 static int deposit_branch(const mimas_deposit *dp, const mimas_grid *g, double *S0,
@@ -248,11 +257,7 @@ static int deposit_branch(const mimas_deposit *dp, const mimas_grid *g, double *
     ws->n = 0;
     if (mimas_deposit_segment(dp, from, to, ws))
         return MIMAS_EIO;
-    for (size_t k = 0; k < ws->n; k++) {
-        double *S = S0 + ws->cell[k] * NSUMS + S_C, w = ws->w[k];
-        for (int m = 0; m < 18; m++)
-            S[m] += q[m] * w;
-    }
+    add_contact(S0, ws, q);
     return MIMAS_OK;
 }
 

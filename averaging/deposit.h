@@ -43,6 +43,9 @@ typedef struct mimas_deposit {
     int gdir[3];           /* Cartesian: the gridded directions, dims of them */
     double inv_extent;     /* kernels: 1 / the box's extent along the directions
                             * they are integrated over (Cartesian; cylindrical z) */
+    int gtab_ok;           /* the Gaussian on x-y-z grids: gtab covers its cutoff */
+    double gtab[64][13];   /* e^{u^2} erf(u) on [0, 4]: Taylor coefficients about the
+                            * centres of 64 intervals (deposit.c) */
 } mimas_deposit;
 
 void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,

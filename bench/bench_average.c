@@ -4,10 +4,14 @@
  * Prints particles/s and contacts/s (contact time = time with contacts minus
  * time without), from the wall clock and, for one thread, from the process's
  * CPU time (which a loaded machine disturbs less).
- *   bench_average [--frames F] [--only CASE] [--threads N] */
+ * --scaling: how the time grows with the kernel width (gauss x-y-z, w = d/2 .. 4d, one
+ * thread, a 20^3 lattice on a 20^3 grid), with the cells a particle touches for
+ * comparison: the separable deposit grows like them, ~w^3.
+ *   bench_average [--frames F] [--only CASE] [--threads N] [--scaling] */
 #include <config.h>
 
 #include <gsl/gsl_rng.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -93,9 +97,50 @@ static timing run(const mimas_frame *f, const char *grid, const char *weight, in
     return t;
 }
 
+/* CPU time per frame against the width w, and the exponent between neighbours */
+static int scaling(void)
+{
+    const int m = 20;
+    const double d = 0.001, L = m * d;
+    mimas_frame f, bare;
+    mimas_frame_init(&f);
+    mimas_frame_init(&bare);
+    build(&f, m, d);
+    build(&bare, m, d);
+    bare.has_contacts = 0;
+    char grid[256];
+    snprintf(grid, sizeof grid, "x=0:%g:%d,y=0:%g:%d,z=0:%g:%d", L, m, L, m, L, m);
+    const double ws[5] = {0.5, 1, 2, 3, 4};
+    double prev_p = 0, prev_c = 0;
+    printf("gauss x-y-z, %zu particles, %zu contacts, spacing d, 1 thread, CPU time per frame:\n",
+           f.particles.n, f.contacts.n);
+    for (int k = 0; k < 5; k++) {
+        char weight[64];
+        snprintf(weight, sizeof weight, "gauss:w=%g", ws[k] * d);
+        timing all = run(&f, grid, weight, 1, 1), p = run(&bare, grid, weight, 1, 1);
+        double tp = p.cpu, tc = all.cpu - p.cpu, cells = pow(2 * 3 * ws[k] + 1, 3);
+        printf("  w = %.1f d: particles %.3g s, contacts %.3g s (cells in reach ~%.0f)", ws[k], tp,
+               tc, cells);
+        if (k > 0)
+            printf("  exponents %.2f, %.2f (cells %.2f)", log(tp / prev_p) / log(ws[k] / ws[k - 1]),
+                   log(tc / prev_c) / log(ws[k] / ws[k - 1]),
+                   log(cells / pow(2 * 3 * ws[k - 1] + 1, 3)) / log(ws[k] / ws[k - 1]));
+        printf("\n");
+        fflush(stdout);
+        prev_p = tp;
+        prev_c = tc;
+    }
+    mimas_frame_free(&f);
+    mimas_frame_free(&bare);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     int frames = 3, only = -1, max_threads = 2;
+    for (int k = 1; k < argc; k++)
+        if (!strcmp(argv[k], "--scaling"))
+            return scaling();
     for (int k = 1; k + 1 < argc; k += 2) {
         if (!strcmp(argv[k], "--frames"))
             frames = atoi(argv[k + 1]);
