@@ -332,6 +332,45 @@ static void gauss_row(const mimas_deposit *dp, int d, int lo, int n, double x, d
     }
 }
 
+/* What a cell-by-cell deposit needs: the object (Cartesian and axis-frame
+ * positions, radius) and, per cell, its weight and (kernels) gradient. */
+typedef struct cell_object {
+    const double *x, *a;   /* a point or a segment's start: Cartesian, axis frame */
+    const double *b, *ab;  /* a segment's end (NULL for points and spheres) */
+    double R, vol;         /* bins: the sphere */
+} cell_object;
+typedef double (*cell_weight_fn)(const mimas_deposit *dp, const int idx[3], const double lo[3],
+                                 const double hi[3], const double c[3], const cell_object *o,
+                                 double *grad);
+
+/* Calls weight for every cell of the index box [lo, hi] and keeps the nonzero
+ * ones, times scale (with their gradients when with_grad). */
+static int each_cell(const mimas_deposit *dp, const int lo[3], const int hi[3],
+                     cell_weight_fn weight, const cell_object *o, int with_grad, double scale,
+                     mimas_weights *ws)
+{
+    const mimas_grid *g = dp->grid;
+    if (reserve(ws, (size_t)(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1)))
+        return MIMAS_EIO;
+    int idx[3];
+    for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
+        for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++)
+            for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++) {
+                double clo[3], chi[3], c[3], gr[3] = {0, 0, 0};
+                cell_geometry(dp, idx, clo, chi, c);
+                double v = weight(dp, idx, clo, chi, c, o, with_grad ? gr : NULL);
+                if (v == 0.0 && gr[0] == 0.0 && gr[1] == 0.0 && gr[2] == 0.0)
+                    continue;
+                size_t cell = mimas_grid_index(g, idx);
+                if (with_grad)
+                    put_grad(ws, cell, v * scale, gr[0] * scale, gr[1] * scale, gr[2] * scale);
+                else
+                    put(ws, cell, v * scale);
+            }
+    ws->has_grad = with_grad;
+    return MIMAS_OK;
+}
+
 /* ---- kernels: particles ---------------------------------------------------------- */
 
 /* The Gaussian on a Cartesian x-y-z grid, separable: per direction the 1-D
@@ -399,6 +438,47 @@ static int gauss_sphere_xyz(const mimas_deposit *dp, const double x[3], int with
 
 /* A kernel on any grid, cell by cell: the kernel at the cell centre, its
  * marginal over the directions not gridded, or its azimuthal average. */
+static double kernel_cell(const mimas_deposit *dp, const int idx[3], const double lo[3],
+                          const double hi[3], const double c[3], const cell_object *o,
+                          double *gr)
+{
+    (void)idx, (void)lo, (void)hi;
+    const mimas_grid *g = dp->grid;
+    const mimas_weight *wt = dp->wt;
+    const double *x = o->x, *a = o->a;
+    double v;
+    if (g->kind == MIMAS_GRID_CARTESIAN) {
+        double d[3], gm[3];
+        for (int k = 0; k < dp->dims; k++)
+            d[k] = c[dp->gdir[k]] - x[dp->gdir[k]];
+        v = mimas_kernel_marginal(wt, dp->dims, d, gr ? gm : NULL);
+        for (int k = 0; gr && k < dp->dims; k++)
+            gr[dp->gdir[k]] = gm[k];
+    } else if (!g->gridded[1]) {
+        double gg[2];
+        v = mimas_kernel_ring(wt, dp->dims, c[0], hypot(a[0], a[1]), c[2] - a[2],
+                              gr ? gg : NULL);
+        if (gr) {
+            gr[0] = gg[0];
+            gr[2] = dp->dims == 3 ? gg[1] : 0.0;
+        }
+    } else {
+        /* phi cells: at the cell centre, the gradient in the centre's
+         * (r, phi, z) components */
+        double cs = cos(c[1]), sn = sin(c[1]), gc[3] = {0, 0, 0};
+        double d[3] = {c[0] * cs - a[0], c[0] * sn - a[1], c[2] - a[2]};
+        v = mimas_kernel_marginal(wt, dp->dims, d, gr ? gc : NULL);
+        if (gr) {
+            gr[0] = cs * gc[0] + sn * gc[1];
+            gr[1] = -sn * gc[0] + cs * gc[1];
+            gr[2] = dp->dims == 3 ? gc[2] : 0.0;
+        }
+    }
+    return v;
+}
+
+/* A kernel on any grid, cell by cell: the kernel at the cell centre, its
+ * marginal over the directions not gridded, or its azimuthal average. */
 static int kernel_sphere(const mimas_deposit *dp, const double x[3], const double a[3],
                          int with_grad, mimas_weights *ws)
 {
@@ -406,81 +486,34 @@ static int kernel_sphere(const mimas_deposit *dp, const double x[3], const doubl
     const mimas_weight *wt = dp->wt;
     if (g->kind == MIMAS_GRID_CARTESIAN && dp->dims == 3 && wt->kind != MIMAS_WEIGHT_LUCY)
         return gauss_sphere_xyz(dp, x, with_grad, ws);
-    int lo[3], hi[3], idx[3];
+    int lo[3], hi[3];
     if (!candidate_box(dp, a, mimas_weight_reach(wt), lo, hi))
         return MIMAS_OK;
-    if (reserve(ws, (size_t)(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1)))
-        return MIMAS_EIO;
-    double rho = hypot(a[0], a[1]);
-    for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
-        for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++)
-            for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++) {
-                double clo[3], chi[3], c[3], gr[3] = {0, 0, 0}, v;
-                cell_geometry(dp, idx, clo, chi, c);
-                if (g->kind == MIMAS_GRID_CARTESIAN) {
-                    double d[3], gm[3];
-                    for (int k = 0; k < dp->dims; k++)
-                        d[k] = c[dp->gdir[k]] - x[dp->gdir[k]];
-                    v = mimas_kernel_marginal(wt, dp->dims, d, with_grad ? gm : NULL);
-                    for (int k = 0; with_grad && k < dp->dims; k++)
-                        gr[dp->gdir[k]] = gm[k];
-                } else if (!g->gridded[1]) {
-                    double gg[2];
-                    v = mimas_kernel_ring(wt, dp->dims, c[0], rho, c[2] - a[2],
-                                          with_grad ? gg : NULL);
-                    if (with_grad) {
-                        gr[0] = gg[0];
-                        gr[2] = dp->dims == 3 ? gg[1] : 0.0;
-                    }
-                } else {
-                    /* phi cells: at the cell centre, the gradient in the centre's
-                     * (r, phi, z) components */
-                    double cs = cos(c[1]), sn = sin(c[1]), gc[3] = {0, 0, 0};
-                    double d[3] = {c[0] * cs - a[0], c[0] * sn - a[1], c[2] - a[2]};
-                    v = mimas_kernel_marginal(wt, dp->dims, d, with_grad ? gc : NULL);
-                    gr[0] = cs * gc[0] + sn * gc[1];
-                    gr[1] = -sn * gc[0] + cs * gc[1];
-                    gr[2] = dp->dims == 3 ? gc[2] : 0.0;
-                }
-                if (v == 0.0 && gr[0] == 0.0 && gr[1] == 0.0 && gr[2] == 0.0)
-                    continue;
-                size_t cell = mimas_grid_index(g, idx);
-                double s = dp->inv_extent;
-                if (with_grad)
-                    put_grad(ws, cell, v * s, gr[0] * s, gr[1] * s, gr[2] * s);
-                else
-                    put(ws, cell, v * s);
-            }
-    ws->has_grad = with_grad;
-    return MIMAS_OK;
+    cell_object o = {x, a, NULL, NULL, 0, 0};
+    return each_cell(dp, lo, hi, kernel_cell, &o, with_grad, dp->inv_extent, ws);
 }
 
 /* ---- bins: particles ---------------------------------------------------------------- */
 
+static double bins_cell(const mimas_deposit *dp, const int idx[3], const double lo[3],
+                        const double hi[3], const double c[3], const cell_object *o,
+                        double *gr)
+{
+    (void)idx, (void)c, (void)gr;
+    double ov = dp->grid->kind == MIMAS_GRID_CARTESIAN
+                    ? overlap_sphere_box(o->x, o->R, lo, hi)
+                    : overlap_sphere_cylcell(o->a, o->R, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]);
+    return ov / (o->vol * cell_volume(dp, lo, hi));
+}
+
 static int bins_sphere(const mimas_deposit *dp, const double x[3], const double a[3], double R,
                        mimas_weights *ws)
 {
-    const mimas_grid *g = dp->grid;
-    int lo[3], hi[3], idx[3];
+    int lo[3], hi[3];
     if (!candidate_box(dp, a, R, lo, hi))
         return MIMAS_OK;
-    if (reserve(ws, (size_t)(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1)))
-        return MIMAS_EIO;
-    double vol_p = 4.0 / 3.0 * M_PI * R * R * R;
-    for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
-        for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++)
-            for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++) {
-                double clo[3], chi[3], c[3];
-                cell_geometry(dp, idx, clo, chi, c);
-                double ov = g->kind == MIMAS_GRID_CARTESIAN
-                                ? overlap_sphere_box(x, R, clo, chi)
-                                : overlap_sphere_cylcell(a, R, clo[0], chi[0], clo[1], chi[1],
-                                                         clo[2], chi[2]);
-                double w = ov / (vol_p * cell_volume(dp, clo, chi));
-                if (w != 0.0)
-                    put(ws, mimas_grid_index(g, idx), w);
-            }
-    return MIMAS_OK;
+    cell_object o = {x, a, NULL, NULL, R, 4.0 / 3.0 * M_PI * R * R * R};
+    return each_cell(dp, lo, hi, bins_cell, &o, 0, 1.0, ws);
 }
 
 int mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, int with_grad,
@@ -724,14 +757,15 @@ static int gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const d
     return MIMAS_OK;
 }
 
-/* A kernel's line integral at the cell idx: Cartesian a, b and the axis-frame
- * aa, ab of the segment. */
-static double kernel_segment_cell(const mimas_deposit *dp, const int idx[3], const double a[3],
-                                  const double b[3], const double aa[3], const double ab[3])
+/* A kernel's line integral at a cell: the object's Cartesian x -> b and axis-frame
+ * a -> ab. */
+static double kernel_segment_cell(const mimas_deposit *dp, const int idx[3], const double lo[3],
+                                  const double hi[3], const double c[3], const cell_object *o,
+                                  double *gr)
 {
+    (void)idx, (void)lo, (void)hi, (void)gr;
     const mimas_grid *g = dp->grid;
-    double lo[3], hi[3], c[3];
-    cell_geometry(dp, idx, lo, hi, c);
+    const double *a = o->x, *b = o->b, *aa = o->a, *ab = o->ab;
     if (g->kind == MIMAS_GRID_CARTESIAN) {
         double d[3], br[3];
         for (int k = 0; k < dp->dims; k++) {
@@ -749,55 +783,36 @@ static double kernel_segment_cell(const mimas_deposit *dp, const int idx[3], con
     return mimas_kernel_marginal_line(dp->wt, dp->dims, d, br);
 }
 
-static int kernel_segment(const mimas_deposit *dp, const double a[3], const double b[3],
-                          const double aa[3], const double ab[3], const double am[3],
-                          double reach, mimas_weights *ws)
+static double bins_segment_cell(const mimas_deposit *dp, const int idx[3], const double lo[3],
+                                const double hi[3], const double c[3], const cell_object *o,
+                                double *gr)
+{
+    (void)idx, (void)c, (void)gr;
+    double f = dp->grid->kind == MIMAS_GRID_CARTESIAN
+                   ? segment_fraction_box(o->x, o->b, lo, hi)
+                   : segment_fraction_cylcell(o->a, o->ab, lo[0], hi[0], lo[1], hi[1], lo[2],
+                                              hi[2]);
+    return f / cell_volume(dp, lo, hi);
+}
+
+/* The cells of a segment by the cell search: within reach of the midpoint am. */
+static int segment_cells(const mimas_deposit *dp, const double a[3], const double b[3],
+                         const double aa[3], const double ab[3], const double am[3],
+                         double reach, mimas_weights *ws)
 {
     const mimas_grid *g = dp->grid;
-    if (g->kind == MIMAS_GRID_CARTESIAN && dp->dims == 3 && dp->wt->kind != MIMAS_WEIGHT_LUCY) {
+    if (dp->kernel && g->kind == MIMAS_GRID_CARTESIAN && dp->dims == 3 &&
+        dp->wt->kind != MIMAS_WEIGHT_LUCY) {
         int rc = gauss_segment_xyz(dp, a, b, ws);
         if (rc >= 0)
             return rc;
     }
-    int lo[3], hi[3], idx[3];
+    int lo[3], hi[3];
     if (!candidate_box(dp, am, reach, lo, hi))
         return MIMAS_OK;
-    if (reserve(ws, (size_t)(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1)))
-        return MIMAS_EIO;
-    for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
-        for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++)
-            for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++) {
-                double w = kernel_segment_cell(dp, idx, a, b, aa, ab);
-                if (w != 0.0)
-                    put(ws, mimas_grid_index(g, idx), w * dp->inv_extent);
-            }
-    return MIMAS_OK;
-}
-
-static int bins_segment_cells(const mimas_deposit *dp, const double a[3], const double b[3],
-                              const double aa[3], const double ab[3], const double am[3],
-                              double reach, mimas_weights *ws)
-{
-    const mimas_grid *g = dp->grid;
-    int lo[3], hi[3], idx[3];
-    if (!candidate_box(dp, am, reach, lo, hi))
-        return MIMAS_OK;
-    if (reserve(ws, (size_t)(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1)))
-        return MIMAS_EIO;
-    for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
-        for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++)
-            for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++) {
-                double clo[3], chi[3], c[3];
-                cell_geometry(dp, idx, clo, chi, c);
-                double f = g->kind == MIMAS_GRID_CARTESIAN
-                               ? segment_fraction_box(a, b, clo, chi)
-                               : segment_fraction_cylcell(aa, ab, clo[0], chi[0], clo[1], chi[1],
-                                                          clo[2], chi[2]);
-                double w = f / cell_volume(dp, clo, chi);
-                if (w != 0.0)
-                    put(ws, mimas_grid_index(g, idx), w);
-            }
-    return MIMAS_OK;
+    cell_object o = {a, aa, b, ab, 0, 0};
+    return dp->kernel ? each_cell(dp, lo, hi, kernel_segment_cell, &o, 0, dp->inv_extent, ws)
+                      : each_cell(dp, lo, hi, bins_segment_cell, &o, 0, 1.0, ws);
 }
 
 /* Bins on a Cartesian grid: walk the segment through the cells.  The
@@ -890,18 +905,14 @@ int mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const doub
         mimas_grid_to_axis(g, as, aa);
         mimas_grid_to_axis(g, bs, ab);
         mimas_grid_to_axis(g, mid, am);
-        if (dp->kernel) {
-            rc = kernel_segment(dp, as, bs, aa, ab, am, reach, ws);
-            continue;
-        }
-        if (g->kind == MIMAS_GRID_CARTESIAN) {
+        if (!dp->kernel && g->kind == MIMAS_GRID_CARTESIAN) {
             int done = walk_segment(dp, as, bs, ws);
             if (done < 0)
                 return MIMAS_EIO;
             if (done)
                 continue;
         }
-        rc = bins_segment_cells(dp, as, bs, aa, ab, am, reach, ws);
+        rc = segment_cells(dp, as, bs, aa, ab, am, reach, ws);
     }
     return rc;
 }

@@ -97,17 +97,23 @@ static timing run(const mimas_frame *f, const char *grid, const char *weight, in
     return t;
 }
 
+/* The frame of an m^3 lattice with its contacts, and the same without contacts. */
+static void build_pair(mimas_frame *f, mimas_frame *bare, int m, double d)
+{
+    mimas_frame_init(f);
+    mimas_frame_init(bare);
+    build(f, m, d);
+    build(bare, m, d);
+    bare->has_contacts = 0;
+}
+
 /* CPU time per frame against the width w, and the exponent between neighbours */
 static int scaling(void)
 {
     const int m = 20;
     const double d = 0.001, L = m * d;
     mimas_frame f, bare;
-    mimas_frame_init(&f);
-    mimas_frame_init(&bare);
-    build(&f, m, d);
-    build(&bare, m, d);
-    bare.has_contacts = 0;
+    build_pair(&f, &bare, m, d);
     char grid[256];
     snprintf(grid, sizeof grid, "x=0:%g:%d,y=0:%g:%d,z=0:%g:%d", L, m, L, m, L, m);
     const double ws[5] = {0.5, 1, 2, 3, 4};
@@ -152,11 +158,7 @@ int main(int argc, char **argv)
     const int m = 46; /* 97,336 particles, 292,008 contacts */
     const double d = 0.001, L = m * d;
     mimas_frame f, bare;
-    mimas_frame_init(&f);
-    mimas_frame_init(&bare);
-    build(&f, m, d);
-    build(&bare, m, d);
-    bare.has_contacts = 0;
+    build_pair(&f, &bare, m, d);
     char xyz[256], rz[256];
     snprintf(xyz, sizeof xyz, "x=0:%g:%d,y=0:%g:%d,z=0:%g:%d", L, m, L, m, L, m);
     snprintf(rz, sizeof rz, "r=0:%g:%d,z=0:%g:%d", L, m, L, m);
