@@ -3,7 +3,9 @@
 #   side_by_side.sh [WORKDIR]
 # Environment: MERCURYCG (the MercuryCG binary, required), MIMAS (default: mimas on
 # PATH), PYTHON (with numpy, h5py: default /usr/bin/python3), ROUNDS (default 2: A B A B),
-# CALLGRIND=1 to count instructions with valgrind as well (slow; load-independent).
+# CALLGRIND=1 to count instructions with valgrind as well (slow; load-independent; MIMAS
+# must then be the program itself, e.g. an installed mimas or, in a build tree,
+# LD_LIBRARY_PATH=_build/.libs with MIMAS=_build/.libs/mimas, not libtool's wrapper).
 # The frame is made once in WORKDIR (default ./mercurycg-run): mimas simulate
 # pack20k.ini, its last frame written as MercuryDPM files p20k.data / p20k.fstat and as a
 # native file p20k.h5.  Both programs write Gauss XYZ fields, w = 1 mm (cutoff 3w), on
