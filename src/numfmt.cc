@@ -3,6 +3,8 @@
 
 #include "numfmt.h"
 
+#include <cmath>
+
 #include <double-conversion/double-to-string.h>
 
 using double_conversion::DoubleToStringConverter;
@@ -16,6 +18,11 @@ static const DoubleToStringConverter converter(
 
 extern "C" size_t mimas_format_double(double v, char *buf)
 {
+    if (v == 0 && !std::signbit(v)) { // empty cells: many zeros
+        buf[0] = '0';
+        buf[1] = '\0';
+        return 1;
+    }
     StringBuilder b(buf, MIMAS_NUMFMT_MAX);
     converter.ToShortest(v, &b);
     size_t n = static_cast<size_t>(b.position());
