@@ -9,8 +9,8 @@
 #include <unistd.h>
 
 #include "average.h"
+#include "cli_table.h"
 #include "commands.h"
-#include "numfmt.h"
 #include "output_h5.h"
 #include "fields.h"
 #include "reader.h"
@@ -42,10 +42,13 @@ static const cli_option options[] = {
                          "mean diameter)"},
     {"list-fields", 0, NULL, "print the fields with their units and definitions (Markdown) and "
                              "exit"},
+    CLI_TABLE_BLOCKS_OPTION,
+    CLI_TABLE_OPTIONS,
 };
 
 enum { O_GRID, O_WEIGHT, O_FIELDS, O_AXIS, O_FROM, O_TO, O_EVERY, O_TYPES, O_EXCLUDE,
-       O_ERRORS, O_PER_FRAME, O_OUTPUT, O_TSV, O_THREADS, O_DIAMETER, O_LIST };
+       O_ERRORS, O_PER_FRAME, O_OUTPUT, O_TSV, O_THREADS, O_DIAMETER, O_LIST, O_BLOCKS,
+       O_TABLE };
 
 typedef struct average_args {
     const cli_command *cmd;
@@ -57,6 +60,7 @@ typedef struct average_args {
     int32_t types[64];
     size_t ntypes;
     int exclude, types_given, list, per_frame;
+    cli_table_options table;
 } average_args;
 
 static int parse_types(average_args *a, const char *arg, const char *opt)
@@ -93,8 +97,9 @@ static int on_option(void *ctx, size_t opt, const char *arg)
         return 0;
     case O_LIST: a->list = 1; return 0;
     case O_THREADS: return cli_parse_threads(a->cmd, arg, &a->threads);
+    case O_BLOCKS: a->table.blocks = 1; return 0;
+    default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
-    return 1;
 }
 
 /* Which derived columns to write: all that exist on this grid, or those the
@@ -129,106 +134,84 @@ static int choose_fields(average_args *a, int cyl, unsigned char *want)
     return rc;
 }
 
-/* A row being built: values appended as the shortest text that reads back as
- * the same double ("nan" where a field is undefined, docs/fields.md). */
-typedef struct row_buf {
-    char *text;
-    size_t len, cap;
-} row_buf;
-
-static int row_value(row_buf *r, int first, double v)
-{
-    if (r->len + MIMAS_NUMFMT_MAX + 1 > r->cap) {
-        size_t cap = r->cap ? 2 * r->cap : 4096;
-        char *t = realloc(r->text, cap);
-        if (!t)
-            return -1;
-        r->text = t;
-        r->cap = cap;
-    }
-    if (!first)
-        r->text[r->len++] = '\t';
-    r->len += mimas_format_double(v, r->text + r->len);
-    return 0;
-}
-
-static void write_header(FILE *out, const mimas_grid *g, int grid_none, int cyl,
+static void write_header(cli_table *t, const mimas_grid *g, int grid_none, int cyl,
                          const unsigned char *want, int errors, int per_frame)
 {
-    const char *sep = "";
     if (per_frame) {
-        fprintf(out, "step\ttime");
-        sep = "\t";
+        cli_table_column(t, "step", NULL);
+        cli_table_column(t, "time", "s");
     }
     for (int d = 0; d < 3 && !grid_none; d++)
-        if (g->gridded[d]) {
-            fprintf(out, "%s%s", sep, mimas_grid_coord_name(g, d));
-            sep = "\t";
-        }
+        if (g->gridded[d])
+            cli_table_column(t, mimas_grid_coord_name(g, d),
+                             cyl && d == 1 ? "rad" : "m");
     for (size_t k = 0; k < mimas_fields_count(); k++) {
         if (!want[k])
             continue;
-        fprintf(out, "%s%s", sep, mimas_field_name(k, cyl));
-        sep = "\t";
-        if (errors)
-            fprintf(out, "\t%s_sem", mimas_field_name(k, cyl));
+        const char *name = mimas_field_name(k, cyl), *unit = mimas_field(k)->unit;
+        cli_table_column(t, name, unit);
+        if (errors) {
+            char sem[80];
+            snprintf(sem, sizeof sem, "%s_sem", name);
+            cli_table_column(t, sem, unit);
+        }
     }
-    fputc('\n', out);
+    cli_table_header_end(t);
 }
 
-/* One row per cell; with frame (not NULL) the rows start with its step and time. */
-static int write_rows(FILE *out, const mimas_average *avg, int grid_none,
+/* One row per cell ("nan" where a field is undefined, docs/fields.md); with
+ * frame (not NULL) the rows start with its step and time.  With blocks, a
+ * blank line ends each row of a grid with two or more gridded directions,
+ * and two end each frame. */
+static int write_rows(cli_table *t, const mimas_average *avg, int grid_none,
                       const unsigned char *want, int errors, const mimas_frame *frame)
 {
     const mimas_grid *g = mimas_average_grid(avg);
     size_t nf = mimas_fields_count();
     size_t cells = grid_none ? 1 : mimas_grid_cells(g);
+    int fast = -1, gridded = 0;  /* the fastest gridded direction */
+    for (int d = 0; d < 3 && !grid_none; d++)
+        if (g->gridded[d]) {
+            gridded++;
+            if (fast < 0)
+                fast = d;
+        }
     double *mean = malloc(cells * nf * sizeof *mean), *sd = malloc(cells * nf * sizeof *sd),
            *count = malloc(cells * nf * sizeof *count);
     int rc = mean && sd && count ? mimas_average_fields(avg, mean, sd, count) : -1;
-    row_buf r = {NULL, 0, 0};
     for (size_t cell = 0; !rc && cell < cells; cell++) {
         double ctr[3];
         if (!grid_none)
             mimas_grid_cell_centre(g, cell, ctr);
-        int first = 1;
-        r.len = 0;
         if (frame) {
-            char step[32];
-            int n = snprintf(step, sizeof step, "%lld", (long long)frame->step);
-            if (row_value(&r, 1, 0.0))
-                rc = -1;
-            if (!rc) {
-                memcpy(r.text, step, (size_t)n);
-                r.len = (size_t)n;
-                rc = row_value(&r, 0, frame->time);
-            }
-            first = 0;
+            cli_table_int(t, (long long)frame->step);
+            cli_table_double(t, frame->time);
         }
-        for (int d = 0; d < 3 && !grid_none && !rc; d++)
-            if (g->gridded[d]) {
-                rc = row_value(&r, first, ctr[d]);
-                first = 0;
-            }
+        for (int d = 0; d < 3 && !grid_none; d++)
+            if (g->gridded[d])
+                cli_table_double(t, ctr[d]);
         const double *m = &mean[cell * nf], *s = &sd[cell * nf], *n = &count[cell * nf];
-        for (size_t k = 0; k < nf && !rc; k++) {
+        for (size_t k = 0; k < nf; k++) {
             if (!want[k])
                 continue;
-            rc = row_value(&r, first, m[k]);
-            first = 0;
-            if (!rc && errors)
-                rc = row_value(&r, 0, n[k] > 1 ? s[k] / sqrt(n[k]) : NAN);
+            cli_table_double(t, m[k]);
+            if (errors)
+                cli_table_double(t, n[k] > 1 ? s[k] / sqrt(n[k]) : NAN);
         }
-        if (!rc) {
-            r.text[r.len++] = '\n';
-            fwrite(r.text, 1, r.len, out);
-        }
+        cli_table_row_end(t);
+        int idx[3] = {0, 0, 0};
+        if (!grid_none)
+            mimas_grid_unindex(g, cell, idx);
+        int last = cell + 1 == cells;
+        if (frame && last)
+            cli_table_block_end(t, 1);
+        else if (gridded >= 2 && idx[fast] == g->n[fast] - 1)
+            cli_table_block_end(t, 0);
     }
-    free(r.text);
     free(mean);
     free(sd);
     free(count);
-    return rc || ferror(out) ? -1 : 0;
+    return rc || ferror(t->fp) ? -1 : 0;
 }
 
 /* The field table as docs/fields.md shows it. */
@@ -291,9 +274,11 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (a.tsv || !a.output)
         status = cli_output_open(&table, a.tsv, &err);
     FILE *out = table.fp;
+    cli_table tw;
+    cli_table_start(&tw, out, &a.table);
     mimas_fields_file *ff = NULL;
     if (!status && a.output)
-        status = mimas_fields_open(&ff, a.output, &err);
+        status = mimas_fields_open(&ff, a.output, want, &err);
     mimas_average *one = NULL; /* the current frame alone (--per-frame) */
     if (!status && a.per_frame) {
         mimas_average_options o1 = o;
@@ -320,8 +305,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
             status = mimas_average_add(one, &f, &err);
             if (!status && out) {
                 if (!header_done++)
-                    write_header(out, mimas_average_grid(one), o.grid_none, cyl, want, 0, 1);
-                if (write_rows(out, one, o.grid_none, want, 0, &f))
+                    write_header(&tw, mimas_average_grid(one), o.grid_none, cyl, want, 0, 1);
+                if (write_rows(&tw, one, o.grid_none, want, 0, &f))
                     status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
             }
             if (!status && ff)
@@ -343,8 +328,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
         status = mimas_error_set(&err, MIMAS_EDATA, "%s: no frame in the selected time range",
                                  argv[first]);
     if (status == MIMAS_END && out && !a.per_frame) {
-        write_header(out, mimas_average_grid(avg), o.grid_none, cyl, want, a.errors, 0);
-        if (write_rows(out, avg, o.grid_none, want, a.errors, NULL))
+        write_header(&tw, mimas_average_grid(avg), o.grid_none, cyl, want, a.errors, 0);
+        if (write_rows(&tw, avg, o.grid_none, want, a.errors, NULL))
             status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
     }
     if (status == MIMAS_END && ff) {
@@ -356,6 +341,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
             status = MIMAS_END;
     }
     mimas_average_free(avg);
+    cli_table_end(&tw);
     int closed = cli_output_close(&table, status == MIMAS_END, &err);
     if (closed)
         status = closed;
@@ -380,8 +366,7 @@ const cli_command cmd_average = {
     "sums; --errors adds the standard error over frames.  Kernels are integrated\n"
     "over the directions a grid leaves out, and averaged exactly over the azimuth\n"
     "on cylindrical grids without phi cells.  Writes a TSV table, one row per\n"
-    "cell: the gridded cell-centre coordinates, then the fields, each value the\n"
-    "shortest decimal that reads back as the same double.",
+    "cell: the gridded cell-centre coordinates, then the fields.",
     options,
     sizeof options / sizeof options[0],
     1,
