@@ -22,7 +22,7 @@ static const cli_option options[] = {
     {"resume", 0, NULL, "continue from the checkpoint RUN.h5.ckpt"},
     {"stop-at", 0, "STEP", "stop after this step, leaving a checkpoint for --resume"},
     {"print-defaults", 0, "TYPE", "print a complete scenario file of TYPE (ringshear, box, "
-                                  "pulloff) with every default, and exit"},
+                                  "pulloff, plugtube) with every default, and exit"},
     {"quiet", 'q', NULL, "no progress line"},
     {"list-keys", 0, NULL, "print every scenario key with its unit and meaning (Markdown) and exit"},
 };
@@ -79,8 +79,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (a.defaults) {
         int type = sim_scenario_type(a.defaults);
         if (type < 0)
-            return cli_fail(cmd, 1, "--print-defaults needs ringshear, box or pulloff, not '%s'",
-                            a.defaults);
+            return cli_fail(cmd, 1, "--print-defaults needs ringshear, box, pulloff or plugtube, "
+                                    "not '%s'", a.defaults);
         sim_scenario s;
         sim_scenario_defaults(&s, type);
         sim_scenario_print(&s, stdout);

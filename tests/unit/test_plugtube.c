@@ -1,0 +1,7 @@
+/* The plugtube scenario: placeholder replaced below. */
+#include <config.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <cmocka.h>
+int main(void) { return 0; }
