@@ -14,7 +14,7 @@ extern "C" {
 #endif
 
 #define MIMAS_NATIVE_VERSION_MAJOR 1
-#define MIMAS_NATIVE_VERSION_MINOR 0
+#define MIMAS_NATIVE_VERSION_MINOR 1
 
 /* ---- writer ---- */
 typedef struct mimas_writer mimas_writer;
