@@ -28,16 +28,6 @@ static double face_u(const sim_gas *g, int d, size_t q, size_t along, double inl
     return along == 0 ? inlet_u : fmax(0, f->u[q]);
 }
 
-/* the face nodes below and above cell (i, j, k) along d */
-static void faces_of(const sim_gas *g, int d, const size_t idx[3], size_t *below, size_t *above)
-{
-    const size_t *m = g->f[d].m;
-    size_t lo[3] = {idx[0], idx[1], idx[2]}, hi[3] = {idx[0], idx[1], idx[2]};
-    hi[d]++;
-    *below = lo[0] + m[0] * (lo[1] + m[1] * lo[2]);
-    *above = hi[0] + m[0] * (hi[1] + m[1] * hi[2]);
-}
-
 /* The explicit source step: P -= (P0 dt/phi) div u (the sign fixed against
  * the print of Strauß' eq. 3.59), plus P0 A_t v_s dt/(phi V_s) in the inlet
  * layer and minus that in the outlet layer (eq. 3.53). */
@@ -54,8 +44,7 @@ static void source_step(sim_gas *g, double dt, double inlet_u)
                     continue;
                 double div = 0;
                 for (int d = 0; d < 3; d++) {
-                    size_t qb, qa;
-                    faces_of(g, d, idx, &qb, &qa);
+                    size_t qb = g->face_below[d][c], qa = g->face_above[d][c];
                     const double *fr = g->f[d].fraction;
                     div += (fr[qa] * face_u(g, d, qa, idx[d] + 1, inlet_u) -
                             fr[qb] * face_u(g, d, qb, idx[d], inlet_u)) /
@@ -70,62 +59,40 @@ static void source_step(sim_gas *g, double dt, double inlet_u)
             }
 }
 
-/* cell of position p on line l of the lines along d (lines in a fixed order) */
-static size_t line_cell(const sim_gas *g, int d, size_t l, size_t p)
-{
-    int e1 = d == 0 ? 1 : 0, e2 = d == 2 ? 1 : 2;
-    size_t idx[3];
-    idx[d] = p;
-    idx[e1] = l % g->n[e1];
-    idx[e2] = l / g->n[e1];
-    return sim_gas_index(g, idx[0], idx[1], idx[2]);
-}
-
 /* Crank-Nicolson along d for all lines at once: one symmetric tridiagonal
  * system, each row of Strauß' eq. 3.64 multiplied by 1/g_j (g_j = P0 dt/(2
  * phi_j eta a_j h^2), a_j the cell's fraction inside the tube), which makes
  * it symmetric, and the lines uncoupled from each other. */
 static void diffuse_along(sim_gas *g, int d, double dt)
 {
-    size_t nc = sim_gas_cells(g), m = g->n[d], lines = nc / m;
+    size_t nc = sim_gas_cells(g), m = g->n[d];
     double *diag = g->scratch, *off = diag + nc, *rhs = off + nc, *x = rhs + nc;
     const sim_gas_faces *f = &g->f[d];
-    const double h = g->h[d], th = g->p.theta;
-    size_t t = 0;
-    for (size_t l = 0; l < lines; l++)
-        for (size_t p = 0; p < m; p++, t++) {
-            size_t c = line_cell(g, d, l, p);
-            size_t cb = p > 0 ? line_cell(g, d, l, p - 1) : c;
-            size_t ca = p + 1 < m ? line_cell(g, d, l, p + 1) : c;
-            size_t idx[3] = {c % g->n[0], c / g->n[0] % g->n[1], c / (g->n[0] * g->n[1])};
-            size_t qb, qa;
-            faces_of(g, d, idx, &qb, &qa);
-            double a = g->fraction[c];
-            double Kb = f->fraction[qb] * f->kappa[qb], Ka = f->fraction[qa] * f->kappa[qa];
-            if (!(g->fraction[cb] > 0))
-                Kb = 0;
-            if (!(g->fraction[ca] > 0))
-                Ka = 0;
-            off[t] = p + 1 < m ? -Ka : 0;
-            if (!(a > 0)) {
-                diag[t] = 1;
-                rhs[t] = g->pressure[c];
-                off[t] = 0;
-                continue;
-            }
-            double inv_G = phi_of(g, c) * g->p.eta * a * h * h / (g->p.P0 * dt);
-            const double *P = g->pressure;
-            diag[t] = inv_G + th * (Kb + Ka);
-            off[t] *= th;
-            rhs[t] = inv_G * P[c] + (1 - th) * (Ka * (P[ca] - P[c]) - Kb * (P[c] - P[cb]));
+    const double h = g->h[d], th = g->p.theta, *P = g->pressure;
+    const double c0 = g->p.eta * h * h / (g->p.P0 * dt);
+    const size_t *order = g->line_order[d], *fb = g->face_below[d], *fa = g->face_above[d];
+    for (size_t t = 0; t < nc; t++) {
+        size_t p = t % m, c = order[t];
+        size_t cb = p > 0 ? order[t - 1] : c, ca = p + 1 < m ? order[t + 1] : c;
+        double a = g->fraction[c];
+        if (!(a > 0)) {
+            diag[t] = 1;
+            rhs[t] = P[c];
+            off[t] = 0;
+            continue;
         }
+        double Kb = g->fraction[cb] > 0 ? f->fraction[fb[c]] * f->kappa[fb[c]] : 0;
+        double Ka = g->fraction[ca] > 0 ? f->fraction[fa[c]] * f->kappa[fa[c]] : 0;
+        double inv_G = phi_of(g, c) * a * c0;
+        off[t] = p + 1 < m ? -th * Ka : 0;
+        diag[t] = inv_G + th * (Kb + Ka);
+        rhs[t] = inv_G * P[c] + (1 - th) * (Ka * (P[ca] - P[c]) - Kb * (P[c] - P[cb]));
+    }
     gsl_vector_view vd = gsl_vector_view_array(diag, nc), vo = gsl_vector_view_array(off, nc - 1);
     gsl_vector_view vr = gsl_vector_view_array(rhs, nc), vx = gsl_vector_view_array(x, nc);
     gsl_linalg_solve_symm_tridiag(&vd.vector, &vo.vector, &vr.vector, &vx.vector);
-    t = 0;
-    for (size_t l = 0; l < lines; l++)
-        for (size_t p = 0; p < m; p++, t++)
-            g->pressure[line_cell(g, d, l, p)] = x[t];
+    for (size_t t = 0; t < nc; t++)
+        g->pressure[order[t]] = x[t];
 }
 
 static void update_gradients(sim_gas *g)
@@ -180,10 +147,9 @@ void sim_gas_velocity(const sim_gas *g, double (*v)[3])
     for (size_t k = 0; k < g->n[2]; k++)
         for (size_t j = 0; j < g->n[1]; j++)
             for (size_t i = 0; i < g->n[0]; i++) {
-                size_t c = sim_gas_index(g, i, j, k), idx[3] = {i, j, k};
+                size_t c = sim_gas_index(g, i, j, k);
                 for (int d = 0; d < 3; d++) {
-                    size_t qb, qa;
-                    faces_of(g, d, idx, &qb, &qa);
+                    size_t qb = g->face_below[d][c], qa = g->face_above[d][c];
                     const sim_gas_faces *f = &g->f[d];
                     v[c][d] = -(f->kappa[qb] * f->grad[qb] + f->kappa[qa] * f->grad[qa]) /
                               (2 * g->p.eta);

@@ -59,6 +59,9 @@ typedef struct sim_gas {
     double layer_volume;     /* tube volume of one layer of cells (the source volume V_s) */
     double *scratch;         /* 5 x cells: the tridiagonal systems */
     double *solid;           /* cells: deposited solid volume */
+    /* per direction d: the cells in the order of the lines along d, and per
+     * cell its face nodes below and above along d (fixed at init) */
+    size_t *line_order[3], *face_below[3], *face_above[3];
 } sim_gas;
 
 int sim_gas_init(sim_gas *g, const sim_gas_params *p, mimas_error *err);

@@ -86,6 +86,9 @@ void sim_gas_free(sim_gas *g)
     free(g->scratch);
     free(g->solid);
     for (int d = 0; d < 3; d++) {
+        free(g->line_order[d]);
+        free(g->face_below[d]);
+        free(g->face_above[d]);
         sim_gas_faces *f = &g->f[d];
         free(f->fraction);
         free(f->cv_fraction);
@@ -124,6 +127,27 @@ static void face_geometry(sim_gas *g, int d)
             }
 }
 
+/* the order of the cells along the lines of direction d, and each cell's faces */
+static void index_lines(sim_gas *g, int d)
+{
+    int e1 = d == 0 ? 1 : 0, e2 = d == 2 ? 1 : 2;
+    const size_t *m = g->f[d].m;
+    size_t t = 0;
+    for (size_t b = 0; b < g->n[e2]; b++)
+        for (size_t a = 0; a < g->n[e1]; a++)
+            for (size_t p = 0; p < g->n[d]; p++, t++) {
+                size_t idx[3];
+                idx[d] = p;
+                idx[e1] = a;
+                idx[e2] = b;
+                size_t c = sim_gas_index(g, idx[0], idx[1], idx[2]);
+                g->line_order[d][t] = c;
+                g->face_below[d][c] = idx[0] + m[0] * (idx[1] + m[1] * idx[2]);
+                idx[d]++;
+                g->face_above[d][c] = idx[0] + m[0] * (idx[1] + m[1] * idx[2]);
+            }
+}
+
 int sim_gas_init(sim_gas *g, const sim_gas_params *p, mimas_error *err)
 {
     memset(g, 0, sizeof *g);
@@ -156,8 +180,14 @@ int sim_gas_init(sim_gas *g, const sim_gas_params *p, mimas_error *err)
         f->kappa = calloc(nf, sizeof *f->kappa);
         f->grad = calloc(nf, sizeof *f->grad);
         bad = !f->fraction || !f->cv_fraction || !f->phi || !f->u || !f->kappa || !f->grad;
-        if (!bad)
+        g->line_order[d] = malloc(nc * sizeof *g->line_order[d]);
+        g->face_below[d] = malloc(nc * sizeof *g->face_below[d]);
+        g->face_above[d] = malloc(nc * sizeof *g->face_above[d]);
+        bad = bad || !g->line_order[d] || !g->face_below[d] || !g->face_above[d];
+        if (!bad) {
             face_geometry(g, d);
+            index_lines(g, d);
+        }
     }
     if (bad) {
         sim_gas_free(g);
