@@ -83,8 +83,8 @@ static const key_desc keys[] = {
     {"contact", "restitution", K_REAL, CP(restitution), 0, 1, 0, NULL, "",
      "coefficient of restitution e; 0: use damping_normal (linear); Hertz needs e > 0", S_ALL},
     {"contact", "normal_clip", K_BOOL, CP(normal_clip), 0, 1, 0, NULL, "",
-     "the normal force is never attractive: max(0, k delta - gamma v_n) (docs/theory.md §2.1); with "
-     "it, restitution is reached at the end of the repulsion (Strauß 2005, eq. 3.13-3.14)", S_ALL},
+     "the normal force is never attractive: max(0, k delta - gamma v_n) (docs/theory.md "
+     "§2.1); with it, e is reached at the end of the repulsion (Strauß 2005, eq. 3.13-3.14)", S_ALL},
     {"contact", "youngs_modulus", K_REAL, CP(youngs_modulus), 0, BIG, NULL, "Pa",
      "E (Hertz, JKR)", S_ALL},
     {"contact", "poisson", K_REAL, CP(poisson), 0, 0.5, 0, NULL, "", "Poisson ratio nu", S_ALL},
@@ -98,8 +98,8 @@ static const key_desc keys[] = {
     {"contact", "contact_angle", K_REAL, CP(contact_angle), 0, 90, 0, NULL, "deg",
      "contact angle theta of the liquid bridges", S_ALL},
     {"contact", "resting_overlap", K_REAL, CP(resting_overlap), 0, 0.5, 0, NULL, "",
-     "> 0: stiffness_normal = m g/(resting_overlap d), so that a particle resting on a wall "
-     "overlaps this fraction of d (linear; m, d of the particles, g the gravity)", S_ALL},
+     "> 0: stiffness_normal = m g/(resting_overlap d): a particle resting on a wall overlaps "
+     "this fraction of d (linear; m, d of the particles)", S_ALL},
     {"ringshear", "r_in", K_REAL, SC(r_in), 0, BIG | R_MIN_OPEN, NULL, "m",
      "radius of the inner (static) cylinder", S_RING},
     {"ringshear", "r_split", K_REAL, SC(r_split), 0, BIG | R_MIN_OPEN, NULL, "m",

@@ -44,6 +44,8 @@ int sim_setup_plugtube(dem_system *s, const sim_scenario *sc, sim_plan *plan,
                        mimas_error *err);
 void sim_tube_free(sim_tube_run *t);
 size_t sim_tube_state(sim_tube_run *t, sim_ck_chunk *chunks, size_t max);
+/* The gas-pressure model of a plugtube run (NULL for other gas models). */
+struct sim_gas *sim_tube_gas(sim_tube_run *t);
 /* The tube and gas fields of a plugtube run into the frame. */
 int sim_tube_frame(const sim_tube_run *t, mimas_frame *f, mimas_error *err);
 /* Sets the angular velocity of the moving parts for the coming step. */

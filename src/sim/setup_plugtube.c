@@ -236,6 +236,11 @@ size_t sim_tube_state(sim_tube_run *t, sim_ck_chunk *chunks, size_t max)
     return n;
 }
 
+sim_gas *sim_tube_gas(sim_tube_run *t)
+{
+    return t->model == SIM_GAS_PRESSURE ? &t->gas : NULL;
+}
+
 int sim_tube_frame(const sim_tube_run *t, mimas_frame *f, mimas_error *err)
 {
     f->tube = (mimas_tube){.present = 1, .origin = {0, 0, 0}, .direction = {0, 0, 1},
