@@ -8,8 +8,11 @@
 #include <string.h>
 
 #include "average.h"
+#include "cli_frames.h"
+#include "cli_table.h"
 #include "commands.h"
 #include "fieldset.h"
+#include "parallel.h"
 #include "reader.h"
 #include "shearband.h"
 
@@ -28,10 +31,11 @@ static const cli_option options[] = {
     {"to", 0, "T1", "raw input: last time to average (s)"},
     {"exclude-types", 0, "L", "raw input: leave out particles of these types (e.g. glued wall "
                               "particles)"},
+    CLI_TABLE_OPTIONS,
 };
 
 enum { O_OMEGA, O_MODEL, O_MIN, O_UNWEIGHTED, O_FENISTEIN, O_PLOT, O_OUTPUT, O_FROM, O_TO,
-       O_EXCLUDE };
+       O_EXCLUDE, O_TABLE };
 
 typedef struct band_args {
     const cli_command *cmd;
@@ -42,6 +46,7 @@ typedef struct band_args {
     cli_window window;
     int32_t types[64];
     size_t ntypes;
+    cli_table_options table;
 } band_args;
 
 static int on_option(void *ctx, size_t opt, const char *arg)
@@ -82,8 +87,8 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
     case O_EXCLUDE:
         return cli_parse_types(a->cmd, "exclude-types", arg, a->types, 64, &a->ntypes);
+    default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
-    return 1;
 }
 
 /* Raw particle input: average with bins on an r-z grid chosen from the
@@ -104,46 +109,48 @@ static int average_input(const band_args *a, const cli_inputs *in, mimas_reader 
     mimas_frame_init(&f);
     cli_progress prog;
     cli_progress_start(&prog, in);
-    while (!status && (status = mimas_reader_next(r, &f, err)) == MIMAS_OK) {
-        int take = cli_window_take(&w, &f, input, err);
-        if (take < 0)
-            status = MIMAS_EUSAGE;
-        if (take <= 0)
-            continue;
-        if (!avg) {
-            char spec[512];
-            status = mimas_band_choose_grid(&f, &o.grid, spec, sizeof spec, err);
-            if (!status)
-                status = mimas_average_create(&avg, &o, err);
-            if (!status)
-                fprintf(stderr, "mimas shearband: averaging the particles with --weight bins %s\n",
-                        spec);
-        }
-        if (!status)
-            status = mimas_average_add(avg, &f, err);
-        if (status && status != MIMAS_EIO)
-            mimas_error_prefix(err, "%s: step %lld", input, (long long)f.step);
-        if (avg)
-            cli_progress_frame(&prog, a->cmd, mimas_average_frames(avg), (long long)f.step,
-                               f.time);
-    }
-    cli_progress_done(&prog);
-    mimas_frame_free(&f);
-    if (status == MIMAS_END && !avg)
+    cli_frames frames;
+    cli_frames_init(&frames, r, &w, input);
+    /* the grid comes from the first frame of the selection (rank 0's first
+     * frame under MPI, shared with the others) */
+    if (!status)
+        status = cli_frames_next(&frames, &f, err);
+    char spec[512] = "";
+    if (mimas_par_rank() == 0 && status == MIMAS_OK)
+        status = mimas_band_choose_grid(&f, &o.grid, spec, sizeof spec, err);
+    if (mimas_par_rank() == 0 && status == MIMAS_END)
         status = mimas_error_set(err, MIMAS_EDATA, "%s: no frame in the selected time range",
                                  input);
+    int have = status == MIMAS_OK;
+    status = mimas_par_share(mimas_par_rank() == 0 ? status : MIMAS_OK, &o.grid, sizeof o.grid,
+                             err);
+    if (!status) {
+        status = mimas_average_create(&avg, &o, err);
+        if (!status && mimas_par_rank() == 0)
+            fprintf(stderr, "mimas shearband: averaging the particles with --weight bins %s\n",
+                    spec);
+        if (!status && !have)
+            status = MIMAS_END; /* this rank has no frame at all */
+    }
+    while (status == MIMAS_OK) {
+        status = mimas_average_add(avg, &f, err);
+        if (status && status != MIMAS_EIO)
+            mimas_error_prefix(err, "%s: step %lld", input, (long long)f.step);
+        cli_progress_frame(&prog, a->cmd, frames.position + 1, (long long)f.step, f.time);
+        if (!status)
+            status = cli_frames_next(&frames, &f, err);
+    }
+    status = mimas_par_agree(status, frames.position, err);
+    if (status == MIMAS_END)
+        status = mimas_average_reduce(avg, err);
+    if (status == MIMAS_OK)
+        status = MIMAS_END;
+    cli_progress_done(&prog);
+    mimas_frame_free(&f);
     if (status == MIMAS_END)
         status = mimas_fieldset_from_average(fs, avg, input, err);
     mimas_average_free(avg);
     return status;
-}
-
-static void print_value(FILE *out, double v)
-{
-    if (isnan(v))
-        fputs("\tnan", out);
-    else
-        fprintf(out, "\t%.10g", v);
 }
 
 typedef struct band_table {
@@ -155,29 +162,39 @@ static void write_table(FILE *out, const void *ctx)
 {
     const band_args *a = ((const band_table *)ctx)->a;
     const mimas_band *b = ((const band_table *)ctx)->b;
-    fputs("z\tRc\tRc_err\tW\tW_err\tchi2\tnpts", out);
-    if (b->model == 4)
-        fputs("\tA\tA_err\tB\tB_err", out);
+    cli_table t;
+    cli_table_start(&t, out, &a->table);
+    static const char *const cols[] = {"z", "Rc", "Rc_err", "W", "W_err"};
+    for (int k = 0; k < 5; k++)
+        cli_table_column(&t, cols[k], "m");
+    cli_table_column(&t, "chi2", "1");
+    cli_table_column(&t, "npts", NULL);
+    static const char *const ab[] = {"A", "A_err", "B", "B_err"};
+    for (int k = 0; b->model == 4 && k < 4; k++)
+        cli_table_column(&t, ab[k], "1");
     if (a->fenistein)
-        fputs("\tRc_fenistein", out);
-    fputs("\tstatus\n", out);
+        cli_table_column(&t, "Rc_fenistein", "m");
+    cli_table_column(&t, "status", NULL);
+    cli_table_header_end(&t);
     for (size_t k = 0; k < b->nlayers; k++) {
         const mimas_fit *f = &b->layers[k].fit;
-        fprintf(out, "%.10g", b->layers[k].z);
+        cli_table_double(&t, b->layers[k].z);
         for (int q = MIMAS_BAND_RC; q <= MIMAS_BAND_W; q++) {
-            print_value(out, f->p[q]);
-            print_value(out, f->err[q]);
+            cli_table_double(&t, f->p[q]);
+            cli_table_double(&t, f->err[q]);
         }
-        print_value(out, f->chi2);
-        fprintf(out, "\t%zu", f->npts);
+        cli_table_double(&t, f->chi2);
+        cli_table_int(&t, (long long)f->npts);
         for (int q = MIMAS_BAND_A; b->model == 4 && q <= MIMAS_BAND_B; q++) {
-            print_value(out, f->p[q]);
-            print_value(out, f->err[q]);
+            cli_table_double(&t, f->p[q]);
+            cli_table_double(&t, f->err[q]);
         }
         if (a->fenistein)
-            print_value(out, mimas_band_fenistein_rc(a->rs, a->h));
-        fprintf(out, "\t%s\n", mimas_fit_status_name(f->status));
+            cli_table_double(&t, mimas_band_fenistein_rc(a->rs, a->h));
+        cli_table_text(&t, mimas_fit_status_name(f->status));
+        cli_table_row_end(&t);
     }
+    cli_table_end(&t);
 }
 
 static int run(const cli_command *cmd, int argc, char **argv)
@@ -216,16 +233,20 @@ static int run(const cli_command *cmd, int argc, char **argv)
     cli_inputs_free(&in);
     if (rc)
         return rc < 0 ? 0 : rc;
+    /* under MPI the fits and the output are rank 0's (its average holds every
+     * rank's frames); the others end with its status */
+    int root = mimas_par_rank() == 0;
     mimas_band *b = NULL;
-    if (!status)
+    if (!status && root)
         status = mimas_band_analyse(fs, &a.o, &b, &err);
     mimas_fieldset_close(fs);
-    if (!status && a.plot)
+    if (!status && root && a.plot)
         status = mimas_band_plot(b, a.plot, &err);
     band_table t = {&a, b};
-    if (!status)
+    if (!status && root)
         status = cli_write_table(a.output, write_table, &t, &err);
     mimas_band_free(b);
+    status = mimas_par_share(status, NULL, 0, &err);
     if (status)
         return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
     return 0;

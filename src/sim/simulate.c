@@ -70,6 +70,7 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
     mimas_writer_options wo;
     mimas_writer_options_default(&wo);
     wo.provenance = o->provenance;
+    wo.xdmf = 1; /* the sidecar for ParaView, written when the run ends */
     sim_ck_chunk state[16];
     int rc = sim_setup(&s, sc, &plan, err);
     size_t nstate = rc ? 0 : sim_plan_state(&plan, state, 16);
