@@ -2,6 +2,7 @@
 
 #include "output_h5.h"
 
+#include <errno.h>
 #include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
@@ -11,6 +12,7 @@
 
 #include "fields.h"
 #include "h5util.h"
+#include "tmpfiles.h"
 
 /* Dimensions of a field dataset: (n2, n1, n0), direction 0 fastest like the
  * cell index. */
@@ -120,7 +122,16 @@ struct mimas_fields_file {
     hid_t *per;                /* /frames/<field>, one per field (or 0) */
     hsize_t frames;
     h5_quiet quiet;
+    int slot[2];               /* tmp and xtmp in the temporary-file registry */
 };
+
+/* Forgets the temporary names (renamed or removed) and frees ff. */
+static void release_names(mimas_fields_file *ff)
+{
+    mimas_tmpfile_forget(ff->slot[0]);
+    mimas_tmpfile_forget(ff->slot[1]);
+    free(ff);
+}
 
 int mimas_fields_open(mimas_fields_file **out, const char *path, mimas_error *err)
 {
@@ -128,20 +139,30 @@ int mimas_fields_open(mimas_fields_file **out, const char *path, mimas_error *er
     mimas_fields_file *ff = calloc(1, sizeof *ff);
     if (!ff)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
-    snprintf(ff->path, sizeof ff->path, "%s", path);
-    snprintf(ff->tmp, sizeof ff->tmp, "%s.tmp%ld", path, (long)getpid());
+    ff->slot[0] = ff->slot[1] = -1;
     size_t len = strlen(path);
+    int w = snprintf(ff->path, sizeof ff->path, "%s", path);
     if (len > 3 && !strcmp(path + len - 3, ".h5"))
         snprintf(ff->xdmf, sizeof ff->xdmf, "%.*s.xdmf", (int)(len - 3), path);
     else
         snprintf(ff->xdmf, sizeof ff->xdmf, "%s.xdmf", path);
-    snprintf(ff->xtmp, sizeof ff->xtmp, "%s.tmp%ld", ff->xdmf, (long)getpid());
+    if (w < 0 || (size_t)w >= sizeof ff->path - 8 ||
+        mimas_tmpfile_name(ff->tmp, sizeof ff->tmp, path) ||
+        mimas_tmpfile_name(ff->xtmp, sizeof ff->xtmp, ff->xdmf)) {
+        free(ff);
+        return mimas_error_set(err, MIMAS_EUSAGE, "%s: the file name is too long", path);
+    }
+    ff->slot[0] = mimas_tmpfile_add(ff->tmp);
+    ff->slot[1] = mimas_tmpfile_add(ff->xtmp);
     h5_quiet_begin(&ff->quiet);
     ff->file = H5Fcreate(ff->tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    char text[256];
+    h5_error_text(text, sizeof text);
     h5_quiet_end(&ff->quiet);
     if (ff->file < 0) {
-        free(ff);
-        return mimas_error_set(err, MIMAS_EIO, "%s: cannot create the field file", path);
+        release_names(ff);
+        return mimas_error_set(err, MIMAS_EIO, "%s: cannot create the field file%s%s", path,
+                               text[0] ? ": " : "", text);
     }
     *out = ff;
     return MIMAS_OK;
@@ -170,7 +191,7 @@ void mimas_fields_abort(mimas_fields_file *ff)
     h5_quiet_end(&ff->quiet);
     remove(ff->tmp);
     remove(ff->xtmp);
-    free(ff);
+    release_names(ff);
 }
 
 /* Appends one row (at index k) of a growing dataset of rank 1 + rank(dims). */
@@ -278,13 +299,16 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
            *count = malloc(cells * nf * sizeof *count), *col = malloc(cells * sizeof *col);
     if (!mean || !sd || !count || !col || mimas_average_fields(a, mean, sd, count)) {
         free(mean), free(sd), free(count), free(col);
+        int code = mimas_error_set(err, MIMAS_EIO, "%s: out of memory for the fields of %zu "
+                                   "cells", ff->path, cells);
         mimas_fields_abort(ff);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return code;
     }
     h5_quiet q;
     h5_quiet_begin(&q);
     hid_t file = ff->file;
     int rc = 0;
+    char why[300] = "";
     close_frames(ff);
     {
         hid_t gm = H5Gcreate2(file, "/mimas", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -350,22 +374,32 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
         }
         rc |= !full;
         free(full);
+        char text[256];
+        h5_error_text(text, sizeof text);
         rc |= H5Fclose(file) < 0;
+        if (rc && !text[0])
+            h5_error_text(text, sizeof text);
         const char *base = strrchr(ff->path, '/');
-        if (!rc)
-            rc |= write_xdmf(ff->xtmp, base ? base + 1 : ff->path, g, none, cyl, dims) != 0;
+        if (!rc && write_xdmf(ff->xtmp, base ? base + 1 : ff->path, g, none, cyl, dims) != 0) {
+            rc = 1;
+            snprintf(text, sizeof text, "its XDMF sidecar: %s", strerror(errno));
+        }
+        snprintf(why, sizeof why, "%s", text);
     }
     h5_quiet_end(&q);
     free(mean), free(sd), free(count), free(col);
-    if (!rc && (rename(ff->tmp, ff->path) != 0 || rename(ff->xtmp, ff->xdmf) != 0))
+    if (!rc && (rename(ff->tmp, ff->path) != 0 || rename(ff->xtmp, ff->xdmf) != 0)) {
         rc = 1;
+        snprintf(why, sizeof why, "cannot rename it into place: %s", strerror(errno));
+    }
     if (rc) {
         remove(ff->tmp);
         remove(ff->xtmp);
-        int code = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the field file", ff->path);
-        free(ff);
+        int code = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the field file%s%s",
+                                   ff->path, why[0] ? ": " : "", why);
+        release_names(ff);
         return code;
     }
-    free(ff);
+    release_names(ff);
     return MIMAS_OK;
 }

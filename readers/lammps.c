@@ -204,5 +204,11 @@ static size_t skipped(void *state)
     return ((lammps_state *)state)->skipped;
 }
 
+static const char *source(void *state)
+{
+    const lammps_state *st = state;
+    return st->atoms.paths[st->atoms.cur < st->atoms.npaths ? st->atoms.cur : st->atoms.npaths - 1];
+}
+
 const reader_backend reader_lammps = {"lammps", "LAMMPS/LIGGGHTS text dump", probe, open_state,
-                                      next, skipped, close_state};
+                                      next, skipped, close_state, source};

@@ -919,5 +919,10 @@ static size_t skipped(void *state)
     return ((merc_state *)state)->skipped;
 }
 
+static const char *source(void *state)
+{
+    return ((merc_state *)state)->data.path;
+}
+
 const reader_backend reader_mercury = {"mercury", "MercuryDPM (.data, .fstat)", probe,
-                                       open_stream, next, skipped, close_stream};
+                                       open_stream, next, skipped, close_stream, source};

@@ -76,5 +76,11 @@ static void close_stream(void *state)
     free(s);
 }
 
+static const char *source(void *state)
+{
+    const native_stream *s = state;
+    return s->inputs[s->file < s->ninputs ? s->file : s->ninputs - 1];
+}
+
 const reader_backend reader_native = {"native", "mimas native (HDF5, H5MD 1.1)", probe,
-                                      open_stream, next, NULL, close_stream};
+                                      open_stream, next, NULL, close_stream, source};

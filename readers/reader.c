@@ -4,9 +4,12 @@
 
 #include "reader.h"
 
+#include <errno.h>
 #include <glob.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <zlib.h>
 
 #include "backend.h"
@@ -21,6 +24,10 @@ struct mimas_reader {
     char **inputs;   /* after '*' expansion */
     size_t ninputs;
     mimas_reader_options opt;
+    /* the frames so far: steps increase, times do not decrease */
+    int have_last;
+    int64_t last_step;
+    double last_time;
 };
 
 void mimas_reader_options_default(mimas_reader_options *o)
@@ -95,7 +102,7 @@ static int detect(mimas_reader *r, mimas_error *err)
     size_t n;
     /* HDF5 first, on the raw bytes (gzread would pass them through anyway) */
     if (peek(path, head, sizeof head - 1, &n) != 0)
-        return mimas_error_set(err, MIMAS_EDATA, "%s: cannot open", path);
+        return mimas_error_set(err, MIMAS_EDATA, "%s: cannot open: %s", path, strerror(errno));
     if (n == 0)
         return mimas_error_set(err, MIMAS_EDATA, "%s: empty file", path);
     head[n] = '\0';
@@ -119,6 +126,34 @@ void mimas_reader_close(mimas_reader *r)
     free(r);
 }
 
+/* Every input (and contact file) exists, is a regular file (or a pipe) and is
+ * given once: the same file twice would count its frames twice. */
+static int check_files(const char *const *names, size_t n, const char *const *more,
+                       size_t nmore, mimas_error *err)
+{
+    size_t total = n + nmore;
+    struct stat *st = malloc((total ? total : 1) * sizeof *st);
+    if (!st)
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the list of %zu inputs",
+                               total);
+    int rc = MIMAS_OK;
+    for (size_t k = 0; k < total && !rc; k++) {
+        const char *name = k < n ? names[k] : more[k - n];
+        if (stat(name, &st[k]) != 0)
+            rc = mimas_error_set(err, MIMAS_EDATA, "%s: cannot open: %s", name, strerror(errno));
+        else if (S_ISDIR(st[k].st_mode))
+            rc = mimas_error_set(err, MIMAS_EDATA, "%s: is a directory, not a data file", name);
+        for (size_t m = 0; m < k && !rc; m++)
+            if (st[m].st_dev == st[k].st_dev && st[m].st_ino == st[k].st_ino &&
+                S_ISREG(st[k].st_mode))
+                rc = mimas_error_set(err, MIMAS_EUSAGE, "%s: given twice (as %s too): its "
+                                     "frames would count twice", name,
+                                     m < n ? names[m] : more[m - n]);
+    }
+    free(st);
+    return rc;
+}
+
 int mimas_reader_open(mimas_reader **out, const char *const *inputs, size_t ninputs,
                       const mimas_reader_options *o, mimas_error *err)
 {
@@ -135,6 +170,20 @@ int mimas_reader_open(mimas_reader **out, const char *const *inputs, size_t ninp
         return mimas_error_set(err, MIMAS_EUSAGE, "density and time step must be positive");
     }
     int rc = reader_expand_names(inputs, ninputs, &r->inputs, &r->ninputs, err);
+    if (!rc) {
+        /* contact files as given ('*' patterns are expanded by the backend) */
+        size_t nside = r->opt.ncontacts + r->opt.nwalls, ns = 0;
+        const char **side = malloc((nside ? nside : 1) * sizeof *side);
+        for (size_t k = 0; side && k < nside; k++) {
+            const char *name = k < r->opt.ncontacts ? r->opt.contacts[k]
+                                                    : r->opt.walls[k - r->opt.ncontacts];
+            if (!strchr(name, '*'))
+                side[ns++] = name;
+        }
+        rc = side ? check_files((const char *const *)r->inputs, r->ninputs, side, ns, err)
+                  : mimas_error_set(err, MIMAS_EIO, "out of memory for the list of inputs");
+        free(side);
+    }
     if (!rc)
         rc = detect(r, err);
     if (!rc)
@@ -148,9 +197,55 @@ int mimas_reader_open(mimas_reader **out, const char *const *inputs, size_t ninp
     return MIMAS_OK;
 }
 
+/* Masses from --density for inputs without them: m = rho 4/3 pi R^3. */
+static int add_masses(mimas_particles *p, double density, mimas_error *err)
+{
+    int rc = mimas_table_set_present(p, &mimas_particles_desc, MIMAS_P_MASS, err);
+    for (size_t k = 0; !rc && k < p->n; k++)
+        p->mass[k] = density * 4.0 / 3.0 * M_PI * p->radius[k] * p->radius[k] * p->radius[k];
+    return rc;
+}
+
+/* What holds for the frames of every format: --timestep and --density fill
+ * what the input lacks, the values are usable (mimas_frame_check), steps
+ * increase and times do not decrease over all inputs, and positions lie in
+ * the box along its periodic directions. */
+static int settle_frame(mimas_reader *r, mimas_frame *f, mimas_error *err)
+{
+    if (isnan(f->time) && r->opt.timestep > 0)
+        f->time = (double)f->step * r->opt.timestep;
+    mimas_particles *p = &f->particles;
+    int rc = MIMAS_OK;
+    if (r->opt.density > 0 && !(p->present & MIMAS_P_MASS) && (p->present & MIMAS_P_RADIUS))
+        rc = add_masses(p, r->opt.density, err);
+    if (!rc)
+        rc = mimas_frame_check(f, err);
+    if (!rc && r->have_last && f->step <= r->last_step)
+        rc = mimas_error_set(err, MIMAS_EDATA, "step %lld follows step %lld: frames are "
+                             "repeated or out of order (the same data given twice?)",
+                             (long long)f->step, (long long)r->last_step);
+    if (!rc && r->have_last && isnan(f->time) != isnan(r->last_time))
+        rc = mimas_error_set(err, MIMAS_EDATA, "some frames have a time and others not "
+                             "(give --timestep, or inputs of one kind)");
+    if (!rc && r->have_last && f->time < r->last_time)
+        rc = mimas_error_set(err, MIMAS_EDATA, "time %.17g follows time %.17g: frames are "
+                             "repeated or out of order (the same data given twice?)", f->time,
+                             r->last_time);
+    if (!rc)
+        rc = mimas_frame_wrap(f, err);
+    if (rc)
+        return mimas_error_prefix(err, "%s: step %lld", r->be->source(r->state),
+                                  (long long)f->step);
+    r->have_last = 1;
+    r->last_step = f->step;
+    r->last_time = f->time;
+    return MIMAS_OK;
+}
+
 int mimas_reader_next(mimas_reader *r, mimas_frame *f, mimas_error *err)
 {
-    return r->be->next(r->state, f, err);
+    int rc = r->be->next(r->state, f, err);
+    return rc ? rc : settle_frame(r, f, err);
 }
 
 const char *mimas_reader_format(const mimas_reader *r)

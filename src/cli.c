@@ -4,12 +4,19 @@
 
 #include <errno.h>
 #include <getopt.h>
+#include <glob.h>
 #include <math.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
+
+#include <hdf5.h>
+
+#include "tmpfiles.h"
 
 #define MAX_OPTIONS 64
 
@@ -369,10 +376,16 @@ int cli_output_open(cli_output *o, const char *path, mimas_error *err)
         return MIMAS_OK;
     }
     o->path = path;
-    snprintf(o->tmp, sizeof o->tmp, "%s.tmp%ld", path, (long)getpid());
+    o->slot = -1;
+    if (mimas_tmpfile_name(o->tmp, sizeof o->tmp, path))
+        return mimas_error_set(err, MIMAS_EUSAGE, "%s: the file name is too long", path);
+    o->slot = mimas_tmpfile_add(o->tmp);
     o->fp = fopen(o->tmp, "w");
-    if (!o->fp)
-        return mimas_error_set(err, MIMAS_EIO, "%s: cannot write: %s", path, strerror(errno));
+    if (!o->fp) {
+        int e = errno;
+        mimas_tmpfile_forget(o->slot);
+        return mimas_error_set(err, MIMAS_EIO, "%s: cannot write: %s", path, strerror(e));
+    }
     return MIMAS_OK;
 }
 
@@ -382,14 +395,20 @@ int cli_output_close(cli_output *o, int ok, mimas_error *err)
         return MIMAS_OK;
     int rc = MIMAS_OK;
     if (!o->path) {
-        if (ok && fflush(stdout) != 0)
-            rc = mimas_error_set(err, MIMAS_EIO, "cannot write the table");
+        errno = 0;
+        if (ok && (fflush(stdout) != 0 || ferror(stdout)))
+            rc = mimas_error_set(err, MIMAS_EIO, "cannot write the table to standard output: %s",
+                                 errno ? strerror(errno) : "write error");
     } else {
+        int bad = ferror(o->fp) != 0;
+        errno = 0;
         int closed = fclose(o->fp) == 0;
-        if (ok && (!closed || rename(o->tmp, o->path) != 0))
-            rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", o->path);
+        if (ok && (bad || !closed || rename(o->tmp, o->path) != 0))
+            rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table: %s", o->path,
+                                 errno ? strerror(errno) : "write error");
         if (!ok || rc)
             remove(o->tmp);
+        mimas_tmpfile_forget(o->slot);
     }
     o->fp = NULL;
     return rc;
@@ -408,4 +427,88 @@ int cli_write_table(const char *path, void (*write)(FILE *fp, const void *ctx), 
     if (bad && !rc)
         rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", path ? path : "-");
     return rc;
+}
+
+/* ---- signals: temporary files go with the process ---- */
+
+static void on_fatal_signal(int sig)
+{
+    mimas_tmpfile_remove_all();
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+static void cleanup_on_signals(void)
+{
+    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
+    for (size_t k = 0; k < sizeof sigs / sizeof sigs[0]; k++) {
+        struct sigaction sa;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_fatal_signal;
+        sigemptyset(&sa.sa_mask);
+        struct sigaction old;
+        /* a signal the caller ignores (nohup, a shell's background job) stays ignored */
+        if (sigaction(sigs[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN)
+            continue;
+        sigaction(sigs[k], &sa, NULL);
+    }
+}
+
+/* ---- an output is never one of the inputs ---- */
+
+static int same_file(const struct stat *a, const char *name)
+{
+    struct stat b;
+    return stat(name, &b) == 0 && a->st_dev == b.st_dev && a->st_ino == b.st_ino;
+}
+
+/* The input that is the file *st (NULL if none). */
+static const char *input_matching(const struct stat *st, const char *const *names, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        glob_t g;
+        memset(&g, 0, sizeof g);
+        if (strchr(names[k], '*') && glob(names[k], 0, NULL, &g) == 0) {
+            const char *hit = NULL;
+            for (size_t m = 0; m < g.gl_pathc && !hit; m++)
+                if (same_file(st, g.gl_pathv[m]))
+                    hit = names[k];
+            globfree(&g);
+            if (hit)
+                return hit;
+        } else if (same_file(st, names[k])) {
+            return names[k];
+        }
+    }
+    return NULL;
+}
+
+int cli_refuse_input_as_output(const cli_command *cmd, const char *output, const cli_inputs *in,
+                               char *const *names, int n)
+{
+    struct stat st;
+    if (!output || !strcmp(output, "-") || stat(output, &st) != 0)
+        return 0;
+    const char *hit = input_matching(&st, (const char *const *)names, n > 0 ? (size_t)n : 0);
+    if (!hit && in)
+        hit = input_matching(&st, in->contacts, in->opt.ncontacts);
+    if (!hit && in)
+        hit = input_matching(&st, in->walls, in->opt.nwalls);
+    if (hit)
+        return cli_fail(cmd, 1, "%s: the output is also an input (%s); it would be destroyed: "
+                        "choose another output name", output, hit);
+    return 0;
+}
+
+void cli_start(int argc, char **argv)
+{
+    (void)argc;
+#ifdef _OPENMP
+    if (!getenv("OMP_WAIT_POLICY") && setenv("OMP_WAIT_POLICY", "passive", 1) == 0)
+        execv("/proc/self/exe", argv); /* returns only if it failed: go on as we are */
+#else
+    (void)argv;
+#endif
+    H5dont_atexit();
+    cleanup_on_signals();
 }

@@ -217,6 +217,23 @@ void mimas_table_drop_extras(void *tab, const mimas_table_desc *d);
 int mimas_table_require(const void *tab, const mimas_table_desc *d, unsigned bits,
                         mimas_error *err);
 
+/* ---- validation (src/frame_check.c): what every reader applies ---- */
+/* MIMAS_EDATA unless the box bounds are finite and increasing and its tilts
+ * finite. */
+int mimas_box_check(const mimas_box *b, mimas_error *err);
+/* MIMAS_EDATA with a message naming the particle or contact row unless every
+ * standard quantity of the frame is usable: finite positions, velocities,
+ * angular velocities, forces and contact vectors; positive radii, masses and
+ * coarse-grain factors; liquid volumes >= 0; contact indices inside the
+ * particle table; a time that is finite or NaN (unknown).  Extra columns are
+ * not checked (NaN marks a value that is undefined there). */
+int mimas_frame_check(const mimas_frame *f, mimas_error *err);
+/* Moves positions outside the box along its periodic directions into it by
+ * whole edge vectors, adding the shifts to the image flags when the frame has
+ * them (the unwrapped position stays the same).  MIMAS_EDATA for a position
+ * more than 1e9 box lengths away. */
+int mimas_frame_wrap(mimas_frame *f, mimas_error *err);
+
 #ifdef __cplusplus
 }
 #endif

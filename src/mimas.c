@@ -57,6 +57,7 @@ int main(int argc, char **argv)
     /* the library checks GSL's return codes (a fit that fails has a status);
      * GSL's default handler would abort the program instead */
     gsl_set_error_handler_off();
+    cli_start(argc, argv);
     if (argc < 2) {
         usage(stderr);
         return 1;

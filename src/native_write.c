@@ -7,6 +7,7 @@
 
 #include "native.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +15,7 @@
 
 #include "h5util.h"
 #include "native_layout.h"
+#include "tmpfiles.h"
 
 #define PARTICLE_CHUNK_MAX 32768   /* rows of a per-particle chunk */
 #define ROW_CHUNK 32768            /* rows of a per-contact chunk */
@@ -32,6 +34,7 @@ typedef struct flat_table {
 struct mimas_writer {
     char *path;            /* final name */
     char *open_path;       /* name being written (temporary in atomic mode) */
+    int tmp_slot;          /* open_path in the temporary-file registry, or -1 */
     mimas_writer_options opt;
     hid_t file;
     size_t frames;
@@ -73,7 +76,8 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
     *out = NULL;
     mimas_writer *w = calloc(1, sizeof *w);
     if (!w)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "%s: out of memory for the writer", path);
+    w->tmp_slot = -1;
     if (o)
         w->opt = *o;
     else
@@ -92,10 +96,11 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
         free(w);
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
     }
-    if (w->opt.atomic)
-        snprintf(w->open_path, len, "%s.tmp%ld", path, (long)getpid());
-    else
-        snprintf(w->open_path, len, "%s", path);
+    /* the file is created under a temporary name in both modes; without
+     * atomic it takes its final name as soon as its header is flushed, so a
+     * file under the final name is always readable (zero frames at first) */
+    mimas_tmpfile_name(w->open_path, len, path);
+    w->tmp_slot = mimas_tmpfile_add(w->open_path);
 
     h5_quiet q;
     h5_quiet_begin(&q);
@@ -136,6 +141,16 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
             rc = h5fail(w, err, "flush");
     }
     h5_quiet_end(&q);
+    if (!rc && !w->opt.atomic) {
+        if (rename(w->open_path, w->path) != 0)
+            rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot create it: %s", w->path,
+                                 strerror(errno));
+        else {
+            snprintf(w->open_path, len, "%s", path);
+            mimas_tmpfile_forget(w->tmp_slot);
+            w->tmp_slot = -1;
+        }
+    }
     if (rc) {
         mimas_writer_abort(w);
         return rc;
@@ -606,6 +621,7 @@ int mimas_writer_close(mimas_writer *w, mimas_error *err)
                              w->path);
     if (rc)
         remove(w->open_path);
+    mimas_tmpfile_forget(w->tmp_slot);
     free(w->path);
     free(w->open_path);
     free(w);
@@ -621,6 +637,7 @@ void mimas_writer_abort(mimas_writer *w)
     release(w);
     h5_quiet_end(&q);
     remove(w->open_path);
+    mimas_tmpfile_forget(w->tmp_slot);
     free(w->path);
     free(w->open_path);
     free(w);
