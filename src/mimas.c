@@ -2,6 +2,7 @@
  * declarations (src/cmd_*.c); everything else lives in libmimas. */
 #include <config.h>
 
+#include <errno.h>
 #include <gsl/gsl_errno.h>
 #include <stdio.h>
 #include <string.h>
@@ -102,5 +103,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "mimas: unknown command '%s' (see mimas help)\n", name);
         return 1;
     }
-    return c->run(c, argc - 1, argv + 1);
+    int rc = c->run(c, argc - 1, argv + 1);
+    /* what went to standard output must have arrived (a full disk, /dev/full) */
+    errno = 0;
+    if ((fflush(stdout) != 0 || ferror(stdout)) && rc == 0)
+        rc = cli_fail(c, 2, "cannot write to standard output: %s",
+                      errno ? strerror(errno) : "write error");
+    return rc;
 }

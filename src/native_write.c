@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "h5util.h"
@@ -54,7 +55,25 @@ struct mimas_writer {
     /* scratch for index -> id conversion */
     int64_t *ids;
     size_t ids_cap;
+    /* commits: frames 0 .. committed-1 are on disk for good */
+    size_t committed;
+    double staged_bytes;   /* data of the frames staged since the last commit */
+    double last_commit;    /* monotonic seconds */
 };
+
+/* A commit (flush) rewrites the metadata of every dataset, at the end of
+ * the file: it is worth it once the frames since the last one hold about as
+ * much data, or once COMMIT_SECONDS have passed.  A crash loses at most the
+ * frames of the last COMMIT_SECONDS. */
+#define COMMIT_SECONDS 1.0
+#define COMMIT_BYTES_PER_DATASET 4096.0
+
+static double seconds_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
 
 void mimas_writer_options_default(mimas_writer_options *o)
 {
@@ -556,6 +575,12 @@ int mimas_writer_stage(mimas_writer *w, const mimas_frame *f, mimas_error *err)
     if (rc && rc != MIMAS_EIO)
         mimas_error_prefix(err, "%s: frame %zu (step %lld)", w->path, w->frames,
                            (long long)f->step);
+    if (!rc) {
+        w->frames++;
+        w->staged_bytes += 24.0 * ((double)f->particles.n * (double)w->npcols +
+                                   (double)f->contacts.n * (double)w->contacts.ncols +
+                                   (double)f->walls.n * (double)w->walls.ncols);
+    }
     return rc;
 }
 
@@ -565,15 +590,30 @@ int mimas_writer_commit(mimas_writer *w, mimas_error *err)
     h5_quiet_begin(&q);
     int rc = H5Fflush(w->file, H5F_SCOPE_LOCAL) < 0 ? h5fail(w, err, "flush") : MIMAS_OK;
     h5_quiet_end(&q);
-    if (!rc)
-        w->frames++;
+    if (!rc) {
+        w->committed = w->frames;
+        w->staged_bytes = 0;
+        w->last_commit = seconds_now();
+    }
     return rc;
+}
+
+int mimas_writer_flush(mimas_writer *w, mimas_error *err)
+{
+    return w->committed < w->frames ? mimas_writer_commit(w, err) : MIMAS_OK;
 }
 
 int mimas_writer_append(mimas_writer *w, const mimas_frame *f, mimas_error *err)
 {
     int rc = mimas_writer_stage(w, f, err);
-    return rc ? rc : mimas_writer_commit(w, err);
+    if (rc)
+        return rc;
+    double datasets = (double)(w->npcols + 6 + (w->has_contacts ? w->contacts.ncols + 3 : 0) +
+                               (w->has_walls ? w->walls.ncols + 3 : 0));
+    if (w->committed == 0 || w->staged_bytes >= COMMIT_BYTES_PER_DATASET * datasets ||
+        seconds_now() - w->last_commit >= COMMIT_SECONDS)
+        rc = mimas_writer_commit(w, err);
+    return rc;
 }
 
 /* ---- closing ---- */

@@ -1,4 +1,4 @@
-/* Linked cells and Verlet lists (PHYSICS.md 3): particles are sorted by cell,
+/* Linked cells and Verlet lists (docs/theory.md §3): particles are sorted by cell,
  * each pair is found once through a half shell of 13 neighbour cells, the
  * list holds every pair closer than R_i + R_j + skin (+ the longest liquid
  * bridge) and is rebuilt when a particle has moved more than skin/2.  The
@@ -249,7 +249,7 @@ static size_t visit(const build_ctx *b, size_t i, dem_entry *out, double *bv)
 /* The walls each particle can reach before the next build (it moves less than skin/2). */
 static void mark_walls_near(dem_system *s)
 {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (s->n >= DEM_PARALLEL_MIN)
     for (size_t k = 0; k < s->n; k++) {
         uint8_t near = 0;
         for (int w = 0; w < s->nwalls; w++) {
@@ -270,6 +270,11 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
         if (2 * s->radius[k] > dmax)
             dmax = 2 * s->radius[k];
     double extra = s->skin + (s->bridges_on ? s->bridge_range : 0);
+    /* a state that blew up stops here, before its huge numbers reach the
+     * cells and image flags */
+    int bad = dem_check_state(s, err);
+    if (bad)
+        return bad;
     wrap_periodic(s);
     cell_grid g = {0};
     size_t *old_of = malloc((n ? n : 1) * sizeof *old_of);
@@ -285,7 +290,7 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
         /* the old list (in old indices) stays until the history has moved over */
         build_ctx b = {s, &g, extra, nl->n == n ? nl->start : NULL, old_of, nl->e, nl->bv};
         start[0] = 0;
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (s->n >= DEM_PARALLEL_MIN)
         for (size_t i = 0; i < n; i++)
             start[i + 1] = visit(&b, i, NULL, NULL);
         for (size_t i = 0; i < n; i++)
@@ -296,7 +301,7 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
         if (!e || !bv)
             rc = mimas_error_set(err, MIMAS_EIO, "out of memory for %zu neighbour pairs", ne);
         else {
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (s->n >= DEM_PARALLEL_MIN)
             for (size_t i = 0; i < n; i++)
                 visit(&b, i, e + start[i], bv + start[i]);
         }
@@ -367,7 +372,7 @@ int dem_neighbours_update(dem_system *s, mimas_error *err)
     if (s->nl.n != s->n || !s->nl.start)
         return dem_neighbours_build(s, err) ? -1 : 1;
     double limit = 0.25 * s->skin * s->skin, worst = 0;
-#pragma omp parallel for reduction(max : worst)
+#pragma omp parallel for reduction(max : worst) if (s->n >= DEM_PARALLEL_MIN)
     for (size_t k = 0; k < s->n; k++) {
         double d2 = 0;
         for (int d = 0; d < 3; d++) {

@@ -14,6 +14,11 @@ int sim_setup(dem_system *s, const sim_scenario *sc, sim_plan *plan, mimas_error
                                        : sim_setup_pulloff(s, sc, plan, err);
     if (rc)
         return rc;
+    s->has_domain = 1;
+    for (int d = 0; d < 3; d++) {
+        s->domain_lo[d] = plan->box.lo[d];
+        s->domain_hi[d] = plan->box.hi[d];
+    }
     return dem_configure(s, sc, err);
 }
 
