@@ -44,7 +44,7 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
     *out = NULL;
     mimas_average *a = calloc(1, sizeof *a);
     if (!a)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the averaging");
     a->opt = *o;
     a->grid = o->grid;
     a->cells = o->grid_none ? 1 : mimas_grid_cells(&o->grid);
@@ -312,7 +312,7 @@ static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
         if (n)
             a->ncontacts = n;
         if (!k || !n)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the averaging");
         a->cap = p->n;
     }
     for (size_t k = 0; k < p->n; k++) {

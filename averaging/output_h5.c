@@ -138,7 +138,7 @@ int mimas_fields_open(mimas_fields_file **out, const char *path, mimas_error *er
     *out = NULL;
     mimas_fields_file *ff = calloc(1, sizeof *ff);
     if (!ff)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the field file");
     ff->slot[0] = ff->slot[1] = -1;
     size_t len = strlen(path);
     int w = snprintf(ff->path, sizeof ff->path, "%s", path);

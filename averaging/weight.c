@@ -51,7 +51,7 @@ int mimas_weight_parse(mimas_weight *wt, const char *spec, mimas_error *err)
         wt->cutoff = 3.0;
         char *text = strdup(spec + (shepard ? 8 : 6)), *save = NULL;
         if (!text)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the weight");
         int rc = MIMAS_OK;
         for (char *tok = strtok_r(text, ",", &save); tok && !rc;
              tok = strtok_r(NULL, ",", &save)) {

@@ -73,7 +73,7 @@ static int open_state(void **state, const char *const *inputs, size_t ninputs,
 {
     lammps_state *st = calloc(1, sizeof *st);
     if (!st)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the dump reader");
     st->opt = *o;
     mimas_id_index_init(&st->index);
     char **names;

@@ -72,7 +72,7 @@ static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
     int prev_idx = 0;
     char *save = NULL, *text = strdup(s->h.columns);
     if (!text)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the ATOMS columns");
     for (char *tok = strtok_r(text, " \t", &save); tok; tok = strtok_r(NULL, " \t", &save)) {
         dump_col *c = &cl->cols[cl->ncols++];
         c->target = A_EXTRA;
@@ -98,12 +98,11 @@ static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
             c->extra = cl->nextra - 1;
             c->comp = cl->extra_ncomp[c->extra]++;
         } else {
-            for (size_t e = 0; e < cl->nextra; e++)
-                if (!strcmp(cl->extra_name[e], idx ? base : tok)) {
-                    int rc = text_error(&s->in, err, "column '%s' appears twice", tok);
-                    free(text);
-                    return rc;
-                }
+            if (dump_columns_find_extra(cl, idx ? base : tok) != (size_t)-1) {
+                int rc = text_error(&s->in, err, "column '%s' appears twice", tok);
+                free(text);
+                return rc;
+            }
             c->extra = dump_columns_add_extra(cl, idx ? base : tok, 1);
             c->comp = 0;
         }

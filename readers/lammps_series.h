@@ -49,6 +49,7 @@ typedef struct dump_columns {
     size_t nextra;
     char (*extra_name)[64];
     int *extra_ncomp;
+    size_t *slots, nslots;  /* hash of the extra names: index + 1, 0 free */
 } dump_columns;
 
 /* 1 if c was built from this header text. */
@@ -56,6 +57,9 @@ int dump_columns_current(const dump_columns *c, const char *header);
 /* Frees c and allocates room for the columns of header; ncols is 0. */
 int dump_columns_reset(dump_columns *c, const char *header, mimas_error *err);
 size_t dump_columns_add_extra(dump_columns *c, const char *name, int ncomp);
+/* The extra column of that name, or (size_t)-1 (a hash: headers of 10^5
+ * columns take linear time). */
+size_t dump_columns_find_extra(const dump_columns *c, const char *name);
 /* Gives the table exactly c's extra columns (kept if they are already those). */
 int dump_columns_extras_to(const dump_columns *c, void *tab, const mimas_table_desc *d,
                            mimas_error *err);

@@ -149,7 +149,7 @@ static herr_t scan_member(hid_t g, const char *name, scan_ctx *s)
         native_col *grown = realloc(s->flat->cols, (s->flat->ncols + 1) * sizeof nc);
         if (!grown) {
             H5Dclose(ds);
-            s->rc = mimas_error_set(s->err, MIMAS_EIO, "out of memory");
+            s->rc = mimas_error_set(s->err, MIMAS_EIO, "out of memory for the native reader");
             return 1;
         }
         s->flat->cols = grown;
@@ -170,7 +170,7 @@ static herr_t scan_member(hid_t g, const char *name, scan_ctx *s)
     native_col *grown = realloc(r->pcols, (r->npcols + 1) * sizeof nc);
     if (!grown) {
         H5Dclose(ds);
-        s->rc = mimas_error_set(s->err, MIMAS_EIO, "out of memory");
+        s->rc = mimas_error_set(s->err, MIMAS_EIO, "out of memory for the native reader");
         return 1;
     }
     r->pcols = grown;
@@ -478,7 +478,7 @@ int mimas_native_open(mimas_native **out, const char *path, mimas_error *err)
     mimas_native *r = calloc(1, sizeof *r);
     if (!r || !(r->path = strdup(path))) {
         free(r);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the native reader");
     }
     mimas_id_index_init(&r->index);
     struct stat st;
@@ -698,7 +698,7 @@ static int read_flat_frame(mimas_native *r, read_flat *t, size_t k, void *tab,
         void *dst = native_col_data(tab, d, &bound[c]);
         int is_index = bound[c].type == MIMAS_T_INDEX;
         if (is_index && ensure_ids(r, n))
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the native reader");
         if (read_block(bound[c].ds, native_mem_type(bound[c].type), rank, s, cnt,
                        is_index ? (void *)r->ids : dst) < 0)
             return bad(r, err, "cannot read %s/%s of frame %zu", d->name, bound[c].name, k);

@@ -30,7 +30,7 @@ static int open_stream(void **state, const char *const *inputs, size_t ninputs,
                                "--wall-contacts do not apply", inputs[0]);
     native_stream *s = calloc(1, sizeof *s);
     if (!s)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the native reader");
     s->inputs = inputs;
     s->ninputs = ninputs;
     /* open every file once up front so a bad one is reported before any work */

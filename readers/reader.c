@@ -59,7 +59,7 @@ int reader_expand_names(const char *const *in, size_t n, char ***out, size_t *no
             globfree(&g);
         if (!ok) {
             reader_free_names(names, count);
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the list of inputs");
         }
     }
     *out = names;
@@ -126,6 +126,14 @@ void mimas_reader_close(mimas_reader *r)
     free(r);
 }
 
+/* "out of memory for ..." names the file it happened in */
+static int name_the_file(int rc, const char *path, mimas_error *err)
+{
+    if (rc == MIMAS_EIO && err && !strncmp(err->msg, "out of memory", 13))
+        mimas_error_prefix(err, "%s", path);
+    return rc;
+}
+
 /* Every input (and contact file) exists, is a regular file (or a pipe) and is
  * given once: the same file twice would count its frames twice. */
 static int check_files(const char *const *names, size_t n, const char *const *more,
@@ -162,7 +170,7 @@ int mimas_reader_open(mimas_reader **out, const char *const *inputs, size_t ninp
         return mimas_error_set(err, MIMAS_EUSAGE, "no input file");
     mimas_reader *r = calloc(1, sizeof *r);
     if (!r)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the list of inputs");
     if (o)
         r->opt = *o;
     if (r->opt.density < 0 || r->opt.timestep < 0) {
@@ -187,7 +195,9 @@ int mimas_reader_open(mimas_reader **out, const char *const *inputs, size_t ninp
     if (!rc)
         rc = detect(r, err);
     if (!rc)
-        rc = r->be->open(&r->state, (const char *const *)r->inputs, r->ninputs, &r->opt, err);
+        rc = name_the_file(r->be->open(&r->state, (const char *const *)r->inputs, r->ninputs,
+                                       &r->opt, err),
+                           r->inputs[0], err);
     if (rc) {
         r->state = NULL;
         mimas_reader_close(r);
@@ -245,6 +255,8 @@ static int settle_frame(mimas_reader *r, mimas_frame *f, mimas_error *err)
 int mimas_reader_next(mimas_reader *r, mimas_frame *f, mimas_error *err)
 {
     int rc = r->be->next(r->state, f, err);
+    if (rc && rc != MIMAS_END)
+        return name_the_file(rc, r->be->source(r->state), err);
     return rc ? rc : settle_frame(r, f, err);
 }
 

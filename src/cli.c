@@ -62,12 +62,12 @@ static int input_option(const cli_command *cmd, cli_inputs *in, size_t k, const 
     case 0: o->format = arg; return 0;
     case 1:
         if (push(&in->contacts, &o->ncontacts, arg))
-            return cli_fail(cmd, 2, "out of memory");
+            return cli_fail(cmd, 2, "out of memory for the list of options");
         o->contacts = in->contacts;
         return 0;
     case 2:
         if (push(&in->walls, &o->nwalls, arg))
-            return cli_fail(cmd, 2, "out of memory");
+            return cli_fail(cmd, 2, "out of memory for the list of options");
         o->walls = in->walls;
         return 0;
     case 3: o->contact_columns = arg; return 0;
@@ -183,6 +183,19 @@ void cli_print_man(const cli_command *cmd, const char *version, FILE *out)
                  ".SH SEE ALSO\n.BR mimas (1)\n");
 }
 
+/* Option arguments that are comma lists (by their placeholder: SPEC, LIST, L
+ * or one with a comma) may have no empty item; no argument may be empty. */
+static int check_argument(const cli_command *cmd, const cli_option *o, const char *arg)
+{
+    if (!arg[0] || !arg[strspn(arg, " \t")])
+        return cli_fail(cmd, 1, "--%s needs a value, not an empty %s", o->name, o->arg);
+    int list = strstr(o->arg, "SPEC") || strstr(o->arg, "LIST") || !strcmp(o->arg, "L") ||
+               strchr(o->arg, ',');
+    if (list && (arg[0] == ',' || arg[strlen(arg) - 1] == ',' || strstr(arg, ",,")))
+        return cli_fail(cmd, 1, "--%s '%s': an empty item in the comma list", o->name, arg);
+    return 0;
+}
+
 int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler, void *ctx,
               cli_inputs *inputs, int *first)
 {
@@ -236,6 +249,10 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler
             }
         if (opt >= nall)
             return cli_fail(cmd, 1, "unknown option (see mimas %s --help)", cmd->name);
+        const cli_option *od = opt < cmd->noptions ? &cmd->options[opt]
+                                                   : &input_options[opt - cmd->noptions];
+        if (od->arg && check_argument(cmd, od, optarg))
+            return 1;
         int rc = opt >= cmd->noptions ? input_option(cmd, inputs, opt - cmd->noptions, optarg)
                  : handler            ? handler(ctx, opt, optarg)
                                       : 0;
@@ -282,7 +299,7 @@ int cli_parse_types(const cli_command *cmd, const char *opt, const char *arg, in
 {
     char *text = strdup(arg), *save = NULL;
     if (!text)
-        return cli_fail(cmd, 2, "out of memory");
+        return cli_fail(cmd, 2, "out of memory for the list of options");
     int rc = 0;
     for (char *tok = strtok_r(text, ",", &save); tok && !rc; tok = strtok_r(NULL, ",", &save)) {
         long v;

@@ -244,6 +244,19 @@ static int run(const cli_command *cmd, int argc, char **argv)
     unsigned char want[128];
     if (!rc)
         rc = choose_fields(&a, cyl, want);
+    if (!rc) {
+        /* the field file, its XDMF sidecar (as output_h5.c names it) and the table */
+        char xdmf[4200] = "";
+        size_t len = a.output ? strlen(a.output) : 0;
+        if (a.output)
+            snprintf(xdmf, sizeof xdmf, "%.*s.xdmf",
+                     (int)(len > 3 && !strcmp(a.output + len - 3, ".h5") ? len - 3 : len),
+                     a.output);
+        rc = cli_refuse_input_as_output(cmd, a.output, &in, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.output ? xdmf : NULL, &in, argv + first,
+                                        argc - first) ||
+             cli_refuse_input_as_output(cmd, a.tsv, &in, argv + first, argc - first);
+    }
     mimas_reader *r = NULL;
     if (!rc)
         rc = cli_open_inputs(cmd, &in, argc, argv, first, &r);

@@ -131,6 +131,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (!rc && argc - first != 1)
         rc = cli_fail(cmd, 1, "needs one field file (mimas average -o FIELDS.h5), not %d inputs",
                       argc - first);
+    if (!rc)
+        rc = cli_refuse_input_as_output(cmd, a.output, NULL, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.plot, NULL, argv + first, argc - first);
     if (rc)
         return rc < 0 ? 0 : rc;
     mimas_error err;

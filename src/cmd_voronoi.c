@@ -117,6 +117,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
     cli_inputs in = {0};
     int first;
     int rc = cli_parse(cmd, argc, argv, on_option, &a, &in, &first);
+    if (!rc)
+        rc = cli_refuse_input_as_output(cmd, a.output, &in, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.tsv, &in, argv + first, argc - first);
     mimas_reader *r = NULL;
     if (!rc)
         rc = cli_open_inputs(cmd, &in, argc, argv, first, &r);

@@ -208,6 +208,10 @@ int mimas_table_resize(void *tab, const mimas_table_desc *d, size_t n, mimas_err
 /* Adds (or finds) an extra column of ncomp doubles; returns its index in *index. */
 int mimas_table_add_extra(void *tab, const mimas_table_desc *d, const char *name,
                           int ncomp, size_t *index, mimas_error *err);
+/* The same for a name the caller knows the table does not have yet (no
+ * search: adding many columns takes linear time). */
+int mimas_table_add_new_extra(void *tab, const mimas_table_desc *d, const char *name, int ncomp,
+                              mimas_error *err);
 void mimas_table_free(void *tab, const mimas_table_desc *d);
 /* Frees the optional quantities not in bits (required ones always stay). */
 void mimas_table_keep_only(void *tab, const mimas_table_desc *d, unsigned bits);

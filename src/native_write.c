@@ -113,7 +113,7 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
         free(w->path);
         free(w->open_path);
         free(w);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the native writer");
     }
     /* the file is created under a temporary name in both modes; without
      * atomic it takes its final name as soon as its header is flushed, so a
@@ -246,7 +246,7 @@ static int create_particles(mimas_writer *w, const mimas_frame *f, mimas_error *
 
     w->pcols = calloc(mimas_particles_desc.ncolumns + p->n_extra, sizeof *w->pcols);
     if (!w->pcols)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the native writer");
     w->npcols = native_cols_of(p, &mimas_particles_desc, w->pcols);
     w->nmax = 0;
     hsize_t cn = p->n < 256 ? 256 : (p->n > PARTICLE_CHUNK_MAX ? PARTICLE_CHUNK_MAX : p->n);
@@ -333,7 +333,7 @@ static int create_flat(mimas_writer *w, flat_table *t, const void *tab, mimas_er
     t->cols = calloc(t->desc->ncolumns + n_extra, sizeof *t->cols);
     if (!t->cols) {
         H5Gclose(g);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the native writer");
     }
     t->ncols = native_cols_of(tab, t->desc, t->cols);
     for (size_t c = 0; c < t->ncols; c++) {
@@ -472,7 +472,7 @@ static int index_to_ids(mimas_writer *w, const size_t *idx, size_t n, const mima
     if (n > w->ids_cap) {
         int64_t *b = realloc(w->ids, n * sizeof *b);
         if (!b)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the native writer");
         w->ids = b;
         w->ids_cap = n;
     }

@@ -51,7 +51,7 @@ int mimas_plot_open(mimas_plot **out, const char *png, mimas_error *err)
     *out = NULL;
     mimas_plot *p = calloc(1, sizeof *p);
     if (!p)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the plot");
     const char *tmpdir = getenv("TMPDIR");
     snprintf(p->dir, sizeof p->dir, "%s/mimas-plot-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
     if (!mkdtemp(p->dir)) {

@@ -373,7 +373,7 @@ static int handler(void *user, const char *section, const char *name, const char
     } else {
         override *grown = realloc(c->ov, (c->nov + 1) * sizeof *grown);
         if (!grown)
-            return fail(c, "out of memory");
+            return fail(c, "out of memory for the [contact A-B] overrides");
         c->ov = grown;
         c->ov[c->nov++] = (override){a, b, k, v};
     }

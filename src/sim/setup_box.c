@@ -26,7 +26,7 @@ int sim_setup_box(dem_system *s, const sim_scenario *sc, sim_plan *plan, mimas_e
                                m[0] * m[1] * m[2]);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     if (!rng)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the random number generator");
     gsl_rng_set(rng, (unsigned long)sc->seed);
     int rc = dem_reserve(s, (size_t)sc->box_count, err);
     for (long k = 0; k < sc->box_count && !rc; k++) {

@@ -54,7 +54,7 @@ int sim_setup_ringshear(dem_system *s, const sim_scenario *sc, sim_plan *plan,
         return mimas_error_set(err, MIMAS_EDATA, "[ringshear] fill_height gives no particles");
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     if (!rng)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the random number generator");
     gsl_rng_set(rng, (unsigned long)sc->seed);
     s->motions[0] = (dem_motion){0};
     s->motions[1] = (dem_motion){0};
