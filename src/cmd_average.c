@@ -1,4 +1,4 @@
-/* mimas average: continuum fields on a grid from any input (PHYSICS 6). */
+/* mimas average: continuum fields on a grid from any input (docs/theory.md §6). */
 #include <config.h>
 
 #include <errno.h>
@@ -306,7 +306,10 @@ static int run(const cli_command *cmd, int argc, char **argv)
                 if (!header_done++)
                     write_header(out, mimas_average_grid(one), o.grid_none, cyl, want, 0, 1);
                 if (write_rows(out, one, o.grid_none, want, 0, &f))
-                    status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
+                    status = mimas_error_set(&err, MIMAS_EIO, "%s: cannot write the table: %s",
+                                             a.tsv && strcmp(a.tsv, "-") ? a.tsv
+                                                                         : "standard output",
+                                             strerror(errno));
             }
             if (!status && ff)
                 status = mimas_fields_append_frame(ff, one, f.step, f.time, &err);
@@ -329,7 +332,10 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (status == MIMAS_END && out && !a.per_frame) {
         write_header(out, mimas_average_grid(avg), o.grid_none, cyl, want, a.errors, 0);
         if (write_rows(out, avg, o.grid_none, want, a.errors, NULL))
-            status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
+            status = mimas_error_set(&err, MIMAS_EIO, "%s: cannot write the table: %s",
+                                             a.tsv && strcmp(a.tsv, "-") ? a.tsv
+                                                                         : "standard output",
+                                             strerror(errno));
     }
     if (status == MIMAS_END && ff) {
         char *line = cli_command_line(argc, argv);
@@ -357,7 +363,7 @@ const cli_command cmd_average = {
     "continuum fields (density, velocity, stress, fabric, ...) on a grid",
     "[options] INPUT... --grid SPEC --weight SPEC",
     "Coarse-grains particles and contacts onto a Cartesian or cylindrical grid\n"
-    "(PHYSICS 6): number and mass density, solid fraction, velocity, kinetic,\n"
+    "(docs/theory.md §6): number and mass density, solid fraction, velocity, kinetic,\n"
     "contact and total stress (compression positive), pressure, shear stress,\n"
     "stress ratio, granular temperature, coordination number, fabric and wall\n"
     "force density (docs/fields.md).  Time averages are taken of the primary\n"

@@ -1,7 +1,9 @@
 /* mimas voronoi: per-particle Voronoi cells (voro++): volume, local solid
- * fraction, faces, surface flags and per-particle stress (PHYSICS 6, 002
- * Sec. 2.2 and eq. 3.8). */
+ * fraction, faces, surface flags and per-particle stress (docs/theory.md §6;
+ * Bierwisch 2009, Sec. 2.2 and eq. 3.8). */
 #include <config.h>
+
+#include <errno.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -104,7 +106,7 @@ static int write_rows(const mimas_voronoi *v, const mimas_frame *f, FILE *out, m
             print_value(out, val.stress ? val.stress[9 * k + (size_t)m] : NAN);
         fputc('\n', out);
     }
-    return ferror(out) ? mimas_error_set(err, MIMAS_EIO, "cannot write the table") : MIMAS_OK;
+    return ferror(out) ? mimas_error_set(err, MIMAS_EIO, "cannot write the table: %s", strerror(errno)) : MIMAS_OK;
 }
 
 static int run(const cli_command *cmd, int argc, char **argv)
@@ -159,8 +161,12 @@ static int run(const cli_command *cmd, int argc, char **argv)
         status = mimas_voronoi_frame(vor, &f, &err);
         if (status && status != MIMAS_EIO)
             mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
-        if (!status && out)
+        if (!status && out) {
             status = write_rows(vor, &f, out, &err);
+            if (status == MIMAS_EIO)
+                mimas_error_prefix(&err, "%s", a.tsv && strcmp(a.tsv, "-") ? a.tsv
+                                                                            : "standard output");
+        }
         if (!status && w)
             status = mimas_writer_append(w, &f, &err);
         cli_progress_frame(&prog, cmd, ++frames, (long long)f.step, f.time);
