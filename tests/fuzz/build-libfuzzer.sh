@@ -31,17 +31,20 @@ sim="$top/src/sim/scenario.c $top/src/sim/dem.c $top/src/sim/contact_law.c \
 for f in "$top"/src/sim/setup_*.c; do
     case " $sim " in *" $f "*) ;; *) sim="$sim $f" ;; esac
 done
-cflags="-g -O1 -fsanitize=fuzzer,address,undefined -I$out -I$top/src -I$top/src/sim -I$top/readers"
+cflags="-g -O1 -fsanitize=address,undefined -I$out -I$top/src -I$top/src/sim -I$top/readers"
+incs="$hdf5 $(pkg-config --cflags gsl)"
+# the library once (objects with the fuzzer's coverage hooks), then each target
+mkdir -p "$out/obj"
+objs=
+for f in $lib $sim "$top/tests/fuzz/fuzz_input.c"; do
+    o="$out/obj/$(basename "$f" .c).o"
+    clang $cflags -fsanitize=fuzzer-no-link $incs -c "$f" -o "$o"
+    objs="$objs $o"
+done
 targets="dump local mercury native scenario"
+libs="$hdf5 $(pkg-config --libs gsl) $(pkg-config --libs inih 2>/dev/null || echo -linih) -lz -lm"
 for t in $targets; do
-    extra=
-    libs="$hdf5 -lz -lm"
-    if [ "$t" = scenario ]; then
-        extra="$sim"
-        libs="$libs $(pkg-config --libs gsl) $(pkg-config --libs inih 2>/dev/null || echo -linih)"
-    fi
-    clang $cflags $lib $extra "$top/tests/fuzz/fuzz_input.c" "$top/tests/fuzz/fuzz_$t.c" $libs \
-        -o "$out/fuzz_$t"
+    clang $cflags -fsanitize=fuzzer $incs $objs "$top/tests/fuzz/fuzz_$t.c" $libs -o "$out/fuzz_$t"
 done
 [ -n "$budget" ] || exit 0
 status=0
