@@ -1,6 +1,7 @@
 #include <config.h>
 
 #include "plot.h"
+#include "tmpfiles.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -21,6 +22,7 @@ struct mimas_plot {
     char names[MAX_DATA][64];
     FILE *data[MAX_DATA];
     int ndata;
+    int slot;   /* tmp in the temporary-file registry (src/tmpfiles.h) */
 };
 
 void mimas_plot_quote(const char *s, char *buf, size_t len)
@@ -62,6 +64,7 @@ int mimas_plot_open(mimas_plot **out, const char *png, mimas_error *err)
     }
     snprintf(p->png, sizeof p->png, "%s", png);
     snprintf(p->tmp, sizeof p->tmp, "%s.tmp%ld.png", png, (long)getpid());
+    p->slot = mimas_tmpfile_add(p->tmp);
     *out = p;
     return MIMAS_OK;
 }
@@ -120,6 +123,7 @@ void mimas_plot_abort(mimas_plot *p)
         return;
     clear_scratch(p);
     remove(p->tmp);
+    mimas_tmpfile_forget(p->slot);
     free(p);
 }
 
