@@ -209,9 +209,14 @@ static int append_extra(void *tab, const mimas_table_desc *d, const char *name, 
                                name, d->name);
     if (ncomp < 1)
         return mimas_error_set(err, MIMAS_EUSAGE, "extra column '%s' needs components", name);
-    int rc = grow((void **)extra, (*n_extra + 1) * sizeof **extra, err);
-    if (rc)
-        return rc;
+    /* the array doubles at 4, 8, 16, ... columns (its capacity is not stored:
+     * it follows from the count), so many columns take linear time */
+    size_t n = *n_extra;
+    if (n == 0 || (n >= 4 && (n & (n - 1)) == 0)) {
+        int rc = grow((void **)extra, (n ? 2 * n : 4) * sizeof **extra, err);
+        if (rc)
+            return rc;
+    }
     mimas_extra *x = &(*extra)[*n_extra];
     x->name = strdup(name);
     x->ncomp = ncomp;

@@ -48,6 +48,8 @@ struct mimas_writer {
     char *path;            /* final name */
     char *open_path;       /* name being written (temporary in atomic mode) */
     int tmp_slot;          /* open_path in the temporary-file registry, or -1 */
+    int unpublished;       /* not atomic: the final name holds a file of zero frames until
+                              the first commit renames open_path over it */
     mimas_writer_options opt;
     hid_t file;
     size_t frames;
@@ -110,6 +112,68 @@ static int h5fail(mimas_writer *w, mimas_error *err, const char *what)
                            text[0] ? ": " : "", text);
 }
 
+/* Creates name with the H5MD and mimas headers, flushed; returns the open
+ * file, or H5I_INVALID_HID with err set. */
+static hid_t create_with_header(mimas_writer *w, const char *name, mimas_error *err)
+{
+    h5_quiet q;
+    h5_quiet_begin(&q);
+    hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+    /* allocate only at the end of the file: never reuse space a committed
+     * frame may still point to (see the comment at the top) */
+    H5Pset_file_space_strategy(fcpl, H5F_FSPACE_STRATEGY_NONE, 0, (hsize_t)1);
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
+    /* SWMR needs the HDF5 1.10 file format (and no newer: 1.10 reads it) */
+    H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110);
+    hid_t file = H5Fcreate(name, H5F_ACC_TRUNC, fcpl, fapl);
+    H5Pclose(fapl);
+    H5Pclose(fcpl);
+    int rc = MIMAS_OK;
+    if (file < 0) {
+        rc = h5fail(w, err, "create the file");
+    } else {
+        /* H5MD metadata */
+        int version[2] = {1, 1};
+        int fmt[2] = {MIMAS_NATIVE_VERSION_MAJOR, MIMAS_NATIVE_VERSION_MINOR};
+        const char *author = w->opt.author ? w->opt.author : getenv("USER");
+        hid_t g = H5Gcreate2(file, "/h5md", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        hid_t ga = H5Gcreate2(g, "author", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        hid_t gc = H5Gcreate2(g, "creator", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        hid_t gm = H5Gcreate2(file, NATIVE_MIMAS, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        /* the H5MD units module: every unit attribute is an SI unit string */
+        hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+        H5Pset_create_intermediate_group(lcpl, 1);
+        hid_t gu = g < 0 ? H5I_INVALID_HID
+                         : H5Gcreate2(g, "modules/units", lcpl, H5P_DEFAULT, H5P_DEFAULT);
+        H5Pclose(lcpl);
+        int units_version[2] = {1, 0};
+        if (g < 0 || ga < 0 || gc < 0 || gm < 0 || gu < 0 ||
+            h5_attr_write_ints(gu, "version", units_version, 2) ||
+            h5_attr_write_vlstr(gu, "system", "SI") ||
+            h5_attr_write_ints(g, "version", version, 2) ||
+            h5_attr_write_vlstr(ga, "name", author && author[0] ? author : "unknown") ||
+            h5_attr_write_vlstr(gc, "name", PACKAGE_NAME) ||
+            h5_attr_write_vlstr(gc, "version", PACKAGE_VERSION) ||
+            h5_attr_write_ints(gm, "format_version", fmt, 2) ||
+            (w->opt.provenance && h5_attr_write_str(gm, "provenance", w->opt.provenance)))
+            rc = h5fail(w, err, "write the file header");
+        H5Gclose(gu);
+        H5Gclose(gm);
+        H5Gclose(gc);
+        H5Gclose(ga);
+        H5Gclose(g);
+        if (!rc && H5Fflush(file, H5F_SCOPE_LOCAL) < 0)
+            rc = h5fail(w, err, "flush");
+    }
+    h5_quiet_end(&q);
+    if (rc && file >= 0) {
+        H5Fclose(file);
+        file = H5I_INVALID_HID;
+    }
+    return rc ? H5I_INVALID_HID : file;
+}
+
 int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_options *o,
                       mimas_error *err)
 {
@@ -136,72 +200,30 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
         free(w);
         return mimas_error_set(err, MIMAS_EIO, "out of memory for the native writer");
     }
-    /* the file is created under a temporary name in both modes; without
-     * atomic it takes its final name as soon as its header is flushed, so a
-     * file under the final name is always readable (zero frames at first) */
+    /* the file is written under a temporary name.  Without atomic, a file of
+     * zero frames (the header alone, closed: clean) takes the final name at
+     * once, and the file being written replaces it when its first frame is
+     * committed (the file then in SWMR mode): the final name always holds a
+     * file that reads, also after a kill at any moment */
     mimas_tmpfile_name(w->open_path, len, path);
     w->tmp_slot = mimas_tmpfile_add(w->open_path);
-
-    h5_quiet q;
-    h5_quiet_begin(&q);
-    hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
-    /* allocate only at the end of the file: never reuse space a committed
-     * frame may still point to (see the comment at the top) */
-    H5Pset_file_space_strategy(fcpl, H5F_FSPACE_STRATEGY_NONE, 0, (hsize_t)1);
-    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-    H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
-    /* SWMR needs the HDF5 1.10 file format (and no newer: 1.10 reads it) */
-    H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110);
-    w->file = H5Fcreate(w->open_path, H5F_ACC_TRUNC, fcpl, fapl);
-    H5Pclose(fapl);
-    H5Pclose(fcpl);
     int rc = MIMAS_OK;
-    if (w->file < 0) {
-        rc = h5fail(w, err, "create the file");
-    } else {
-        /* H5MD metadata */
-        int version[2] = {1, 1};
-        int fmt[2] = {MIMAS_NATIVE_VERSION_MAJOR, MIMAS_NATIVE_VERSION_MINOR};
-        const char *author = w->opt.author ? w->opt.author : getenv("USER");
-        hid_t g = H5Gcreate2(w->file, "/h5md", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-        hid_t ga = H5Gcreate2(g, "author", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-        hid_t gc = H5Gcreate2(g, "creator", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-        hid_t gm = H5Gcreate2(w->file, NATIVE_MIMAS, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-        /* the H5MD units module: every unit attribute is an SI unit string */
-        hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
-        H5Pset_create_intermediate_group(lcpl, 1);
-        hid_t gu = g < 0 ? H5I_INVALID_HID
-                         : H5Gcreate2(g, "modules/units", lcpl, H5P_DEFAULT, H5P_DEFAULT);
-        H5Pclose(lcpl);
-        int units_version[2] = {1, 0};
-        if (g < 0 || ga < 0 || gc < 0 || gm < 0 || gu < 0 ||
-            h5_attr_write_ints(gu, "version", units_version, 2) ||
-            h5_attr_write_vlstr(gu, "system", "SI") ||
-            h5_attr_write_ints(g, "version", version, 2) ||
-            h5_attr_write_vlstr(ga, "name", author && author[0] ? author : "unknown") ||
-            h5_attr_write_vlstr(gc, "name", PACKAGE_NAME) ||
-            h5_attr_write_vlstr(gc, "version", PACKAGE_VERSION) ||
-            h5_attr_write_ints(gm, "format_version", fmt, 2) ||
-            (w->opt.provenance && h5_attr_write_str(gm, "provenance", w->opt.provenance)))
-            rc = h5fail(w, err, "write the file header");
-        H5Gclose(gu);
-        H5Gclose(gm);
-        H5Gclose(gc);
-        H5Gclose(ga);
-        H5Gclose(g);
-        if (!rc && H5Fflush(w->file, H5F_SCOPE_LOCAL) < 0)
-            rc = h5fail(w, err, "flush");
-    }
-    h5_quiet_end(&q);
-    if (!rc && !w->opt.atomic) {
-        if (rename(w->open_path, w->path) != 0)
+    if (!w->opt.atomic) {
+        hid_t zero = create_with_header(w, w->open_path, err);
+        if (zero < 0)
+            rc = err ? err->code : MIMAS_EIO;
+        else if (H5Fclose(zero) < 0)
+            rc = h5fail(w, err, "close the file");
+        else if (rename(w->open_path, w->path) != 0)
             rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot create it: %s", w->path,
                                  strerror(errno));
-        else {
-            snprintf(w->open_path, len, "%s", path);
-            mimas_tmpfile_forget(w->tmp_slot);
-            w->tmp_slot = -1;
-        }
+        else
+            w->unpublished = 1;
+    }
+    if (!rc) {
+        w->file = create_with_header(w, w->open_path, err);
+        if (w->file < 0)
+            rc = err ? err->code : MIMAS_EIO;
     }
     if (rc) {
         mimas_writer_abort(w);
@@ -652,6 +674,19 @@ int mimas_writer_stage(mimas_writer *w, const mimas_frame *f, mimas_error *err)
     return rc;
 }
 
+/* The file being written takes the final name (over the file of zero frames). */
+static int publish(mimas_writer *w, mimas_error *err)
+{
+    if (rename(w->open_path, w->path) != 0)
+        return mimas_error_set(err, MIMAS_EIO, "%s: cannot rename the file into place: %s",
+                               w->path, strerror(errno));
+    snprintf(w->open_path, strlen(w->path) + 32, "%s", w->path);
+    mimas_tmpfile_forget(w->tmp_slot);
+    w->tmp_slot = -1;
+    w->unpublished = 0;
+    return MIMAS_OK;
+}
+
 int mimas_writer_commit(mimas_writer *w, mimas_error *err)
 {
     h5_quiet q;
@@ -670,6 +705,8 @@ int mimas_writer_commit(mimas_writer *w, mimas_error *err)
             w->swmr = 1;
     }
     h5_quiet_end(&q);
+    if (!rc && w->unpublished)
+        rc = publish(w, err);
     if (!rc) {
         w->committed = w->frames;
         w->nstaged = 0;
@@ -741,7 +778,7 @@ int mimas_writer_close(mimas_writer *w, mimas_error *err)
     if (release(w) < 0 && !rc)
         rc = h5fail(w, err, "close the file");
     h5_quiet_end(&q);
-    if (!rc && w->opt.atomic && rename(w->open_path, w->path) != 0)
+    if (!rc && (w->opt.atomic || w->unpublished) && rename(w->open_path, w->path) != 0)
         rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot rename the finished file into place",
                              w->path);
     if (rc)
@@ -769,6 +806,8 @@ void mimas_writer_abort(mimas_writer *w)
     release(w);
     h5_quiet_end(&q);
     remove(w->open_path);
+    if (w->unpublished)
+        remove(w->path); /* the file of zero frames it put there */
     mimas_tmpfile_forget(w->tmp_slot);
     free(w->path);
     free(w->open_path);
