@@ -402,9 +402,8 @@ int dump_columns_extra_column(dump_columns *c, dump_col *col, const char *name, 
         col->extra = c->nextra - 1;
         col->comp = c->extra_ncomp[col->extra]++;
     } else {
-        for (size_t e = 0; e < c->nextra; e++)
-            if (!strcmp(c->extra_name[e], idx ? base : name))
-                return -1;
+        if (dump_columns_find_extra(c, idx ? base : name) != (size_t)-1)
+            return -1;
         col->extra = dump_columns_add_extra(c, idx ? base : name, 1);
         col->comp = 0;
     }
