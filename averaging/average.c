@@ -271,13 +271,7 @@ static void deposit_branch(const mimas_deposit *dp, const mimas_grid *g, double 
 
 static int selected(const mimas_average_options *o, const mimas_particles *p, size_t k)
 {
-    if (!o->ntypes)
-        return 1;
-    int32_t t = (p->present & MIMAS_P_TYPE) ? p->type[k] : 1;
-    int listed = 0;
-    for (size_t m = 0; m < o->ntypes; m++)
-        listed |= o->types[m] == t;
-    return o->exclude ? !listed : listed;
+    return mimas_particle_selected(p, k, o->types, o->ntypes, o->exclude);
 }
 
 static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)

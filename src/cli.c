@@ -250,6 +250,21 @@ int cli_parse_double(const char *s, double *v)
     return 0;
 }
 
+int cli_parse_pair(const char *s, double *a, double *b)
+{
+    const char *colon = strchr(s, ':');
+    if (!colon || colon == s || strlen(colon + 1) == 0 || strlen(s) >= 256)
+        return -1;
+    char first[256];
+    snprintf(first, sizeof first, "%.*s", (int)(colon - s), s);
+    double x, y;
+    if (cli_parse_double(first, &x) || cli_parse_double(colon + 1, &y) || !(x < y))
+        return -1;
+    *a = x;
+    *b = y;
+    return 0;
+}
+
 int cli_parse_long(const char *s, long *v)
 {
     char *end;
@@ -408,4 +423,24 @@ int cli_write_table(const char *path, void (*write)(FILE *fp, const void *ctx), 
     if (bad && !rc)
         rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", path ? path : "-");
     return rc;
+}
+
+int cli_parse_temperature(const cli_command *cmd, const char *arg, unsigned *bits)
+{
+    static const char *const names[3] = {"s", "r", "phi"};
+    char buf[64];
+    if (strlen(arg) >= sizeof buf)
+        return cli_fail(cmd, 1, "--temperature-components: a comma list of s, r, phi");
+    snprintf(buf, sizeof buf, "%s", arg);
+    *bits = 0;
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        int c = 0;
+        while (c < 3 && strcmp(tok, names[c]))
+            c++;
+        if (c == 3)
+            return cli_fail(cmd, 1, "--temperature-components: '%s' is not s, r or phi", tok);
+        *bits |= 1u << c;
+    }
+    return *bits ? 0 : cli_fail(cmd, 1, "--temperature-components: a comma list of s, r, phi");
 }

@@ -112,6 +112,12 @@ char *cli_command_line(int argc, char **argv);
 /* Parses a number; returns 0 on success. */
 int cli_parse_double(const char *s, double *v);
 int cli_parse_long(const char *s, long *v);
+/* --temperature-components: a comma list of s, r, phi into the bits 1, 2,
+ * 4 (MIMAS_TEMP_S, _R, _PHI of axial_profile.h); prints the usage error and
+ * returns 1 otherwise. */
+int cli_parse_temperature(const cli_command *cmd, const char *arg, unsigned *bits);
+/* "A:B" with A < B (finite numbers); returns 0 on success. */
+int cli_parse_pair(const char *s, double *a, double *b);
 /* --threads N (1..1024) into *threads; prints the usage error and returns 1 otherwise. */
 int cli_parse_threads(const cli_command *cmd, const char *arg, int *threads);
 

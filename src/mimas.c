@@ -16,6 +16,8 @@ static const cli_command *const commands[] = {
     &cmd_simulate,
     &cmd_shearband,
     &cmd_rheology,
+    &cmd_plugs,
+    &cmd_radial,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 
