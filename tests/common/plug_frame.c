@@ -77,8 +77,8 @@ static int add(mimas_frame *f, const tube_spec *t, size_t *n, double x, double y
 }
 
 /* Spheres at solid fraction nu in the cylinder part [s0, s1]: centres
- * evenly spaced along s in [s0 + a, s1 - a] (so every slice holds nearly the
- * same volume), spread over the cross-section r <= R - a by two
+ * evenly spaced along s in [s0, s1] (so every slice holds nearly the same
+ * volume, and two parts that touch make one without a seam), spread over the cross-section r <= R - a by two
  * low-discrepancy sequences (the golden ratio and sqrt 2, shifted by the
  * rng). */
 static int fill(mimas_frame *f, const tube_spec *t, gsl_rng *rng, size_t *n, double s0, double s1,
@@ -92,7 +92,7 @@ static int fill(mimas_frame *f, const tube_spec *t, gsl_rng *rng, size_t *n, dou
         double u = fmod(u0 + 0.6180339887498949 * (double)m, 1.0);
         double w = fmod(w0 + 0.4142135623730950 * (double)m, 1.0);
         double r = rmax * sqrt(u), ph = 2 * M_PI * w;
-        double s = s0 + a + (s1 - s0 - 2 * a) * ((double)m + 0.5) / (double)count, v = 0;
+        double s = s0 + (s1 - s0) * ((double)m + 0.5) / (double)count, v = 0;
         if (shift)
             s += shift(t, k, (s - s0) / (s1 - s0), time, &v);
         if (add(f, t, n, r * cos(ph), r * sin(ph), s, v, type))

@@ -1,8 +1,9 @@
 /* Synthetic tube-flow frames with known plugs, for the plug tests, the
  * test tool make_plug_frames and the benchmark.  A plug is a cylinder of
  * the tube's cross-section filled with spheres at a given solid fraction
- * (centres evenly spaced in [back + a, front - a], r <= R - a, overlaps
- * allowed: only volumes matter), moving at its velocity.  A faster plug that
+ * (centres evenly spaced in [back, front] and r <= R - a, overlaps allowed:
+ * only volumes matter; the solid fraction ramps from nu to 0 over a
+ * diameter about each end), moving at its velocity.  A faster plug that
  * reaches the one ahead moves on with it (a merge at the moment of
  * contact); a plug with a split time leaves its part below split_at x
  * length behind at v_split from then on.  Deterministic: the same spec and
