@@ -303,7 +303,7 @@ int mimas_spacetime_open(mimas_spacetime **stp, const char *path, const mimas_ax
                                "slice centre: axial coordinate along the tube axis") ||
               h5_attr_write_double(st->group, "slice_width", o->slices.w) ||
               h5_attr_write_double(st->group, "tube_radius", o->geom.radius);
-    hsize_t zero[2] = {0, st->ns}, c1 = 256, c2[2] = {1, st->ns};
+    hsize_t zero[2] = {0, st->ns}, c1 = 256, c2[2] = {64, st->ns};
     st->step = h5_create_growing(st->group, "step", H5T_STD_I64LE, 1, 1, zero, &c1, NULL, 0);
     st->time = h5_create_growing(st->group, "time", H5T_IEEE_F64LE, 1, 1, zero, &c1, NULL, 0);
     bad |= st->step < 0 || st->time < 0 || h5_attr_write_str(st->time, "unit", "s");
