@@ -277,18 +277,7 @@ static int selected(const mimas_average_options *o, const mimas_particles *p, si
 static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
 {
     const mimas_particles *p = &f->particles;
-    int rc = mimas_table_require(p, &mimas_particles_desc,
-                                 MIMAS_P_RADIUS | MIMAS_P_MASS | MIMAS_P_VEL, err);
-    if (rc) {
-        if (!(p->present & MIMAS_P_MASS))
-            mimas_error_prefix(err, "%s", "give the particle density with --density");
-        return rc;
-    }
-    if (f->has_contacts)
-        rc = mimas_table_require(&f->contacts, &mimas_contacts_desc, MIMAS_C_FORCE, err);
-    if (!rc && f->has_walls)
-        rc = mimas_table_require(&f->walls, &mimas_walls_desc, MIMAS_W_FORCE | MIMAS_W_POINT,
-                                 err);
+    int rc = mimas_frame_require_dynamics(f, err);
     if (rc)
         return rc;
     if (a->opt.weight.voronoi) {
@@ -342,6 +331,28 @@ static void deposit_wall_contact(const mimas_deposit *dp, const mimas_grid *g, d
     mimas_deposit_sphere(dp, from, 0.0, add_wall_force, &wc);
 }
 
+/* The contacts of a frame on their way into the sums S. */
+typedef struct frame_visit {
+    const mimas_average *a;
+    const mimas_frame *f;
+    const mimas_grid *g;
+    const mimas_deposit *dp;
+    double *S;
+} frame_visit;
+
+static void visit_pair(void *user, size_t k, const double b[3], const double at[3])
+{
+    frame_visit *v = user;
+    size_t j = v->f->contacts.j[k];
+    deposit_branch(v->dp, v->g, v->S, v->f->particles.pos[j], b, v->f->contacts.force[k], at);
+}
+
+static void visit_wall(void *user, size_t i, const double c[3], const double force[3])
+{
+    frame_visit *v = user;
+    deposit_wall_contact(v->dp, v->g, v->S, &v->f->box, v->f->particles.pos[i], c, force);
+}
+
 /* Thread t of nt deposits every nt-th particle, contact and wall contact of
  * the frame into the sums S. */
 static void deposit_frame(const mimas_average *a, const mimas_frame *f, const mimas_grid *g,
@@ -372,35 +383,8 @@ static void deposit_frame(const mimas_average *a, const mimas_frame *f, const mi
     }
     if (a->opt.weight.voronoi)
         return; /* the stress comes from the per-particle stresses */
-    const mimas_contacts *c = &f->contacts;
-    for (size_t k = (size_t)t; f->has_contacts && k < c->n; k += (size_t)nt) {
-        size_t i = c->i[k], j = c->j[k];
-        if (!a->keep[i] && !a->keep[j])
-            continue;
-        if (a->keep[i] && a->keep[j]) {
-            /* f_ij (x) (r_i - r_j), the branch by the minimum image (PHYSICS 1) */
-            double b[3] = {p->pos[i][0] - p->pos[j][0], p->pos[i][1] - p->pos[j][1],
-                           p->pos[i][2] - p->pos[j][2]};
-            mimas_box_min_image(&f->box, b);
-            const double *at = (c->present & MIMAS_C_POINT) ? c->point[k] : p->pos[i];
-            deposit_branch(dp, g, S, p->pos[j], b, c->force[k], at);
-            continue;
-        }
-        /* one side excluded (a wall particle): a wall contact of the other */
-        size_t in = a->keep[i] ? i : j;
-        double cp[3], fin[3];
-        mimas_contact_point(f, k, in, cp);
-        for (int m = 0; m < 3; m++)
-            fin[m] = in == i ? c->force[k][m] : -c->force[k][m];
-        deposit_wall_contact(dp, g, S, &f->box, p->pos[in], cp, fin);
-    }
-    const mimas_wall_contacts *w = &f->walls;
-    for (size_t k = (size_t)t; f->has_walls && k < w->n; k += (size_t)nt) {
-        size_t i = w->particle[k];
-        if (!a->keep[i])
-            continue;
-        deposit_wall_contact(dp, g, S, &f->box, p->pos[i], w->point[k], w->force[k]);
-    }
+    frame_visit v = {a, f, g, dp, S};
+    mimas_contacts_visit(f, a->keep, (size_t)t, (size_t)nt, visit_pair, visit_wall, &v);
 }
 
 int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)

@@ -252,8 +252,8 @@ static void derive(mimas_axial *a, int gas)
         for (int c = 0; c < 3; c++) {
             F[MIMAS_AX_VS + c] = ratio(S[MIMAS_AS_P + c], M);
             /* sum m f (v - V)^2 = sum m f v^2 - P^2/M, never below zero */
-            kin[c] = M > 0 ? fmax(0.0, S[MIMAS_AS_K + c] - S[MIMAS_AS_P + c] * S[MIMAS_AS_P + c] / M)
-                           : 0.0;
+            double P = S[MIMAS_AS_P + c];
+            kin[c] = M > 0 ? fmax(0.0, S[MIMAS_AS_K + c] - P * P / M) : 0.0;
             if ((a->o.temperature >> c) & 1)
                 tsum += kin[c];
         }
@@ -274,18 +274,7 @@ static void derive(mimas_axial *a, int gas)
 static int prepare(mimas_axial *a, const mimas_frame *f, mimas_error *err)
 {
     const mimas_particles *p = &f->particles;
-    int rc = mimas_table_require(p, &mimas_particles_desc,
-                                 MIMAS_P_RADIUS | MIMAS_P_MASS | MIMAS_P_VEL, err);
-    if (rc) {
-        if (!(p->present & MIMAS_P_MASS))
-            mimas_error_prefix(err, "%s", "give the particle density with --density");
-        return rc;
-    }
-    if (f->has_contacts)
-        rc = mimas_table_require(&f->contacts, &mimas_contacts_desc, MIMAS_C_FORCE, err);
-    if (!rc && f->has_walls)
-        rc = mimas_table_require(&f->walls, &mimas_walls_desc, MIMAS_W_FORCE | MIMAS_W_POINT,
-                                 err);
+    int rc = mimas_frame_require_dynamics(f, err);
     if (rc)
         return rc;
     if (p->n > a->keep_cap) {
@@ -333,6 +322,25 @@ static void frame_totals(mimas_axial *a, const mimas_particles *p)
     a->totals = t;
 }
 
+typedef struct contact_visit {
+    mimas_axial *a;
+    const mimas_frame *f;
+} contact_visit;
+
+static void visit_pair(void *user, size_t k, const double b[3], const double at[3])
+{
+    contact_visit *v = user;
+    (void)at;
+    add_branch(v->a, v->f->particles.pos[v->f->contacts.j[k]], b, v->f->contacts.force[k]);
+}
+
+static void visit_wall(void *user, size_t i, const double c[3], const double force[3])
+{
+    contact_visit *v = user;
+    const mimas_particles *p = &v->f->particles;
+    add_wall_contact(v->a, &v->f->box, p->pos[i], p->radius[i], c, force);
+}
+
 int mimas_axial_compute(mimas_axial *a, const mimas_frame *f, mimas_error *err)
 {
     int rc = prepare(a, f, err);
@@ -343,33 +351,8 @@ int mimas_axial_compute(mimas_axial *a, const mimas_frame *f, mimas_error *err)
     for (size_t i = 0; i < p->n; i++)
         if (a->keep[i])
             add_particle(a, p, i);
-    const mimas_contacts *c = &f->contacts;
-    for (size_t k = 0; f->has_contacts && k < c->n; k++) {
-        size_t i = c->i[k], j = c->j[k];
-        if (!a->keep[i] && !a->keep[j])
-            continue;
-        if (a->keep[i] && a->keep[j]) {
-            /* f_ij (x) (r_i - r_j), the branch by the minimum image */
-            double b[3] = {p->pos[i][0] - p->pos[j][0], p->pos[i][1] - p->pos[j][1],
-                           p->pos[i][2] - p->pos[j][2]};
-            mimas_box_min_image(&f->box, b);
-            add_branch(a, p->pos[j], b, c->force[k]);
-            continue;
-        }
-        /* one side left out (a wall particle): a wall contact of the other */
-        size_t in = a->keep[i] ? i : j;
-        double cp[3], fin[3];
-        mimas_contact_point(f, k, in, cp);
-        for (int m = 0; m < 3; m++)
-            fin[m] = in == i ? c->force[k][m] : -c->force[k][m];
-        add_wall_contact(a, &f->box, p->pos[in], p->radius[in], cp, fin);
-    }
-    const mimas_wall_contacts *w = &f->walls;
-    for (size_t k = 0; f->has_walls && k < w->n; k++) {
-        size_t i = w->particle[k];
-        if (a->keep[i])
-            add_wall_contact(a, &f->box, p->pos[i], p->radius[i], w->point[k], w->force[k]);
-    }
+    contact_visit v = {a, f};
+    mimas_contacts_visit(f, a->keep, 0, 1, visit_pair, visit_wall, &v);
     int gas = f->gas.present && f->gas.pressure;
     if (gas && (rc = add_gas(a, &f->gas, err)))
         return rc;

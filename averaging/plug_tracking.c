@@ -3,6 +3,7 @@
 #include <config.h>
 
 #include "plug_tracking.h"
+#include "grow.h"
 #include "sample_mean.h"
 
 #include <math.h>
@@ -192,14 +193,9 @@ static int track_close(mimas_tracker *t, track *k, mimas_error *err)
     for (size_t q = 0; q < t->nprof; q++)
         if (k->pcnt[q])
             mimas_sample_mean_add(&t->profile[q], k->psum[q] / (double)k->pcnt[q]);
-    if (t->nrows == t->cap_rows) {
-        size_t cap = t->cap_rows ? 2 * t->cap_rows : 64;
-        mimas_track_row *r = realloc(t->rows, cap * sizeof *r);
-        if (!r)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
-        t->rows = r;
-        t->cap_rows = cap;
-    }
+    int rc = mimas_grow((void **)&t->rows, &t->cap_rows, t->nrows + 1, sizeof *t->rows, 64, err);
+    if (rc)
+        return rc;
     mimas_track_row *r = &t->rows[t->nrows++];
     r->track = k->id;
     r->first_time = k->first_time;
@@ -318,14 +314,10 @@ static size_t find(size_t *parent, size_t x)
 static int add_event(mimas_tracker *t, int kind, double time, double centre, const long *ids,
                      size_t nb, size_t na, mimas_error *err)
 {
-    if (t->nevents == t->cap_events) {
-        size_t cap = t->cap_events ? 2 * t->cap_events : 32;
-        mimas_event *e = realloc(t->events, cap * sizeof *e);
-        if (!e)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
-        t->events = e;
-        t->cap_events = cap;
-    }
+    int rc = mimas_grow((void **)&t->events, &t->cap_events, t->nevents + 1, sizeof *t->events,
+                        32, err);
+    if (rc)
+        return rc;
     mimas_event *e = &t->events[t->nevents];
     e->tracks = malloc((nb + na) * sizeof *e->tracks);
     if (!e->tracks)

@@ -3,6 +3,8 @@
 
 #include "plugs.h"
 
+#include "grow.h"
+
 #include <math.h>
 #include <stdlib.h>
 
@@ -15,14 +17,9 @@ void mimas_plug_list_free(mimas_plug_list *l)
 
 static int push(mimas_plug_list *l, const mimas_plug *p, mimas_error *err)
 {
-    if (l->n == l->cap) {
-        size_t cap = l->cap ? 2 * l->cap : 16;
-        mimas_plug *q = realloc(l->p, cap * sizeof *q);
-        if (!q)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
-        l->p = q;
-        l->cap = cap;
-    }
+    int rc = mimas_grow((void **)&l->p, &l->cap, l->n + 1, sizeof *l->p, 16, err);
+    if (rc)
+        return rc;
     l->p[l->n++] = *p;
     return MIMAS_OK;
 }

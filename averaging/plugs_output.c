@@ -140,7 +140,8 @@ int mimas_otable_open(mimas_otable **tp, FILE *tsv, mimas_h5out *h5, const char 
                                          cols[c].text ? t->strtype : H5T_IEEE_F64LE, 1, 1, &zero,
                                          &chunk, NULL, cols[c].text ? 0 : 1);
             rc |= t->ds[c] < 0 ||
-                  (cols[c].unit && *cols[c].unit && h5_attr_write_str(t->ds[c], "unit", cols[c].unit)) ||
+                  (cols[c].unit && *cols[c].unit &&
+                   h5_attr_write_str(t->ds[c], "unit", cols[c].unit)) ||
                   (cols[c].meaning && h5_attr_write_str(t->ds[c], "definition", cols[c].meaning));
         }
         if (rc) {
@@ -309,7 +310,8 @@ int mimas_spacetime_open(mimas_spacetime **stp, const char *path, const mimas_ax
     bad |= st->step < 0 || st->time < 0 || h5_attr_write_str(st->time, "unit", "s");
     for (int f = 0; f < MIMAS_AX_NFIELDS; f++) {
         const mimas_axial_field_desc *d = mimas_axial_field(f);
-        st->field[f] = h5_create_growing(st->group, d->name, H5T_IEEE_F64LE, 2, 1, zero, c2, NULL, 1);
+        st->field[f] =
+            h5_create_growing(st->group, d->name, H5T_IEEE_F64LE, 2, 1, zero, c2, NULL, 1);
         bad |= st->field[f] < 0 || h5_attr_write_str(st->field[f], "unit", d->unit) ||
                h5_attr_write_str(st->field[f], "definition", d->meaning);
     }

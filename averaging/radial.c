@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "axial_profile.h"
+#include "contact_point.h"
 #include "overlap.h"
 #include "sample_mean.h"
 
@@ -159,13 +160,9 @@ int mimas_radial_sample(mimas_radial *r, const mimas_frame *f, const double *pla
                         mimas_error *err)
 {
     const mimas_particles *p = &f->particles;
-    int rc = mimas_table_require(p, &mimas_particles_desc,
-                                 MIMAS_P_RADIUS | MIMAS_P_MASS | MIMAS_P_VEL, err);
-    if (rc) {
-        if (!(p->present & MIMAS_P_MASS))
-            mimas_error_prefix(err, "%s", "give the particle density with --density");
+    int rc = mimas_frame_require_dynamics(f, err);
+    if (rc)
         return rc;
-    }
     memset(r->sum, 0, r->nr * R_NSUMS * sizeof *r->sum);
     int omega = (p->present & MIMAS_P_OMEGA) != 0;
     for (size_t i = 0; i < p->n; i++) {

@@ -444,3 +444,12 @@ int cli_parse_temperature(const cli_command *cmd, const char *arg, unsigned *bit
     }
     return *bits ? 0 : cli_fail(cmd, 1, "--temperature-components: a comma list of s, r, phi");
 }
+
+int cli_types_option(const cli_command *cmd, cli_types *t, int exclude, const char *arg)
+{
+    if (t->given)
+        return cli_fail(cmd, 1, "--types and --exclude-types exclude each other");
+    t->given = 1;
+    t->exclude = exclude;
+    return cli_parse_types(cmd, exclude ? "exclude-types" : "types", arg, t->types, 64, &t->n);
+}

@@ -87,6 +87,16 @@ int cli_output_close(cli_output *o, int ok, mimas_error *err);
 int cli_parse_types(const cli_command *cmd, const char *opt, const char *arg, int32_t *types,
                     size_t max, size_t *n);
 
+/* --types L or --exclude-types L (they exclude each other). */
+typedef struct cli_types {
+    int32_t types[64];
+    size_t n;
+    int exclude, given;
+} cli_types;
+/* The option's list into t (exclude: it was --exclude-types); prints the
+ * usage error and returns 1 on a bad list or when both options are given. */
+int cli_types_option(const cli_command *cmd, cli_types *t, int exclude, const char *arg);
+
 /* The frames a command uses: --from T0 --to T1 (simulation times) and
  * --every K of those. */
 typedef struct cli_window {

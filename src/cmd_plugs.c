@@ -78,9 +78,7 @@ typedef struct plugs_args {
     const char *plugs, *tracks, *events, *profiles, *stats, *summary, *axial, *axial_tsv,
         *spacetime, *output;
     cli_window window;
-    int32_t types[64];
-    size_t ntypes;
-    int exclude, types_given;
+    cli_types types;
 } plugs_args;
 
 static int positive(const plugs_args *a, const char *opt, const char *arg, double *v)
@@ -95,14 +93,6 @@ static int pair(const plugs_args *a, const char *opt, const char *arg, double *x
     if (cli_parse_pair(arg, x, y))
         return cli_fail(a->cmd, 1, "--%s needs A:B with A < B, not '%s'", opt, arg);
     return 0;
-}
-
-static int parse_types(plugs_args *a, const char *arg, const char *opt)
-{
-    if (a->types_given)
-        return cli_fail(a->cmd, 1, "--types and --exclude-types exclude each other");
-    a->types_given = 1;
-    return cli_parse_types(a->cmd, opt, arg, a->types, 64, &a->ntypes);
 }
 
 static int on_option(void *ctx, size_t opt, const char *arg)
@@ -147,8 +137,8 @@ static int on_option(void *ctx, size_t opt, const char *arg)
         if (cli_parse_long(arg, &a->window.every) || a->window.every < 1)
             return cli_fail(a->cmd, 1, "--every needs a positive whole number, not '%s'", arg);
         return 0;
-    case O_TYPES: return parse_types(a, arg, "types");
-    case O_EXCLUDE: a->exclude = 1; return parse_types(a, arg, "exclude-types");
+    case O_TYPES:
+    case O_EXCLUDE: return cli_types_option(a->cmd, &a->types, opt == O_EXCLUDE, arg);
     }
     return 1;
 }
@@ -240,8 +230,8 @@ static int setup(plugs_run *u, const mimas_frame *f, mimas_error *err)
     int rc = mimas_tube_geom_resolve(&o->geom, a->axis, a->radius, &f->tube, err);
     double smin, smax, d;
     if (!rc)
-        rc = mimas_tube_extent(&o->geom, f, a->types, a->ntypes, a->exclude, &smin, &smax, &d,
-                               err);
+        rc = mimas_tube_extent(&o->geom, f, a->types.types, a->types.n, a->types.exclude, &smin,
+                               &smax, &d, err);
     if (rc)
         return rc;
     if (a->diameter > 0)
@@ -251,9 +241,9 @@ static int setup(plugs_run *u, const mimas_frame *f, mimas_error *err)
     if ((rc = mimas_slices_set(&o->slices, s0, s1, a->slice > 0 ? a->slice : 0.5 * d, err)))
         return rc;
     o->temperature = a->temperature;
-    o->types = a->types;
-    o->ntypes = a->ntypes;
-    o->exclude = a->exclude;
+    o->types = a->types.types;
+    o->ntypes = a->types.n;
+    o->exclude = a->types.exclude;
     o->check_inside = 1;
     o->flow_at = a->has_flow_at ? a->flow_at : 0.5 * (s0 + s1);
     u->po.threshold = a->threshold;
@@ -677,9 +667,10 @@ static int run(const cli_command *cmd, int argc, char **argv)
         status = mimas_error_set(&err, MIMAS_EIO, "cannot make a temporary file");
     if (!status && to_tsv && !to_stdout)
         status = cli_output_open(&u.plug_out, a.plugs, &err);
+    FILE *plug_fp = to_stdout ? u.plug_tmp : to_tsv ? u.plug_out.fp : NULL;
     if (!status)
-        status = mimas_otable_open(&u.plug_tab, to_stdout ? u.plug_tmp : to_tsv ? u.plug_out.fp : NULL,
-                                   u.h5, "/plugs", plug_cols, NPLUGCOLS, &err);
+        status = mimas_otable_open(&u.plug_tab, plug_fp, u.h5, "/plugs", plug_cols, NPLUGCOLS,
+                                   &err);
     mimas_frame f;
     mimas_frame_init(&f);
     cli_progress prog;

@@ -51,11 +51,10 @@ typedef struct radial_args {
     const char *axis, *output;
     double radius, probe, spread, dr, at0, at1, diameter, slice, s0, s1, threshold, min_length;
     long planes;
-    int has_at, in_plugs, has_range, exclude, types_given;
+    int has_at, in_plugs, has_range;
     unsigned temperature;
     cli_window window;
-    int32_t types[64];
-    size_t ntypes;
+    cli_types types;
 } radial_args;
 
 static int positive(const radial_args *a, const char *opt, const char *arg, double *v)
@@ -105,13 +104,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
             return cli_fail(a->cmd, 1, "--every needs a positive whole number, not '%s'", arg);
         return 0;
     case O_TYPES:
-    case O_EXCLUDE:
-        if (a->types_given)
-            return cli_fail(a->cmd, 1, "--types and --exclude-types exclude each other");
-        a->types_given = 1;
-        a->exclude = opt == O_EXCLUDE;
-        return cli_parse_types(a->cmd, opt == O_TYPES ? "types" : "exclude-types", arg, a->types,
-                               64, &a->ntypes);
+    case O_EXCLUDE: return cli_types_option(a->cmd, &a->types, opt == O_EXCLUDE, arg);
     }
     return 1;
 }
@@ -136,7 +129,8 @@ static int setup(radial_run *u, const mimas_frame *f, mimas_error *err)
     int rc = mimas_tube_geom_resolve(&o.geom, a->axis, a->radius, &f->tube, err);
     double smin, smax, d;
     if (!rc)
-        rc = mimas_tube_extent(&o.geom, f, a->types, a->ntypes, a->exclude, &smin, &smax, &d, err);
+        rc = mimas_tube_extent(&o.geom, f, a->types.types, a->types.n, a->types.exclude, &smin,
+                               &smax, &d, err);
     if (rc)
         return rc;
     if (a->diameter > 0)
@@ -144,23 +138,24 @@ static int setup(radial_run *u, const mimas_frame *f, mimas_error *err)
     o.probe = a->probe > 0 ? a->probe : 0.25 * d;
     o.dr = a->dr > 0 ? a->dr : 0.5 * o.probe;
     o.temperature = a->temperature;
-    o.types = a->types;
-    o.ntypes = a->ntypes;
-    o.exclude = a->exclude;
+    o.types = a->types.types;
+    o.ntypes = a->types.n;
+    o.exclude = a->types.exclude;
     o.check_inside = 1;
     if ((rc = mimas_radial_create(&u->rad, &o, err)))
         return rc;
     double spread = a->spread > 0 ? a->spread : 1.5 * d;
     size_t P = (size_t)a->planes;
     u->spacing = P > 1 ? spread / (double)(P - 1) : spread;
-    double lo = isfinite(o.geom.length) ? 0.0 : smin, hi = isfinite(o.geom.length) ? o.geom.length : smax;
+    int known = isfinite(o.geom.length);
+    double lo = known ? 0.0 : smin, hi = known ? o.geom.length : smax;
     if (a->in_plugs) {
         mimas_axial_options ao;
         memset(&ao, 0, sizeof ao);
         ao.geom = o.geom;
-        ao.types = a->types;
-        ao.ntypes = a->ntypes;
-        ao.exclude = a->exclude;
+        ao.types = a->types.types;
+        ao.ntypes = a->types.n;
+        ao.exclude = a->types.exclude;
         ao.flow_at = NAN;
         double s0 = a->has_range ? a->s0 : lo, s1 = a->has_range ? a->s1 : hi;
         if ((rc = mimas_slices_set(&ao.slices, s0, s1, a->slice > 0 ? a->slice : 0.5 * d, err)) ||

@@ -69,7 +69,8 @@ static int add(mimas_frame *f, const tube_spec *t, size_t *n, double x, double y
     p->radius[i] = a;
     p->mass[i] = t->density * 4.0 / 3.0 * M_PI * a * a * a;
     for (int c = 0; c < 3; c++) {
-        p->pos[i][c] = t->axis.origin[c] + x * t->axis.ex[c] + y * t->axis.ey[c] + s * t->axis.ez[c];
+        p->pos[i][c] =
+            t->axis.origin[c] + x * t->axis.ex[c] + y * t->axis.ey[c] + s * t->axis.ez[c];
         p->vel[i][c] = vs * t->axis.ez[c];
         p->omega[i][c] = 0;
     }
@@ -78,9 +79,9 @@ static int add(mimas_frame *f, const tube_spec *t, size_t *n, double x, double y
 
 /* Spheres at solid fraction nu in the cylinder part [s0, s1]: centres
  * evenly spaced along s in [s0, s1] (so every slice holds nearly the same
- * volume, and two parts that touch make one without a seam), spread over the cross-section r <= R - a by two
- * low-discrepancy sequences (the golden ratio and sqrt 2, shifted by the
- * rng). */
+ * volume, and two parts that touch make one without a seam), spread over
+ * the cross-section r <= R - a by two low-discrepancy sequences (the
+ * golden ratio and sqrt 2, shifted by the rng). */
 static int fill(mimas_frame *f, const tube_spec *t, gsl_rng *rng, size_t *n, double s0, double s1,
                 double nu, double (*shift)(const tube_spec *, size_t, double, double, double *),
                 size_t k, double time, int32_t type)

@@ -127,8 +127,10 @@ static void test_lens(void **state)
         double r = fmin(R1, R2), cx = R2 < R1 ? d : 0.0;
         long n = 400000, in = 0;
         for (long m = 0; m < n; m++) {
-            double p[3] = {cx + r * (2 * gsl_rng_uniform(rng) - 1), r * (2 * gsl_rng_uniform(rng) - 1),
-                           r * (2 * gsl_rng_uniform(rng) - 1)};
+            double p[3];
+            p[0] = cx + r * (2 * gsl_rng_uniform(rng) - 1);
+            p[1] = r * (2 * gsl_rng_uniform(rng) - 1);
+            p[2] = r * (2 * gsl_rng_uniform(rng) - 1);
             double d1 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
             double d2 = (p[0] - d) * (p[0] - d) + p[1] * p[1] + p[2] * p[2];
             in += d1 <= R1 * R1 && d2 <= R2 * R2;
@@ -160,7 +162,8 @@ static void test_lattice_porosity(void **state)
                 continue;
             ncol++;
             for (int k = 0; k < layers; k++) {
-                assert_int_equal(mimas_table_resize(&f.particles, &mimas_particles_desc, n + 1, &err), 0);
+                assert_int_equal(
+                    mimas_table_resize(&f.particles, &mimas_particles_desc, n + 1, &err), 0);
                 set_particle(&f, n, i * h, j * h, (k + 0.5) * h, a, 1e-6, 0, 0, 0);
                 f.particles.id[n] = (int64_t)n + 1;
                 f.particles.type[n] = 1;
