@@ -102,14 +102,12 @@ mimas_axial_totals mimas_axial_frame_totals(const mimas_axial *a)
     return a->totals;
 }
 
-/* A particle: its volume, mass, moment and momentum per slice it cuts. */
-static void add_particle(mimas_axial *a, const mimas_particles *p, size_t i)
+/* A particle at s with velocity v (s, r, phi): its volume, mass, moment and
+ * momentum per slice it cuts. */
+static void add_particle(mimas_axial *a, const mimas_particles *p, size_t i, double s,
+                         const double v[3])
 {
-    const mimas_tube_geom *g = &a->o.geom;
     const mimas_slices *sl = &a->o.slices;
-    double s, r, phi, v[3];
-    mimas_tube_coords(g, p->pos[i], &s, &r, &phi);
-    mimas_tube_vector(g, p->pos[i], p->vel[i], v);
     double R = p->radius[i], V = 4.0 / 3.0 * M_PI * R * R * R, m = p->mass[i];
     size_t k0, k1;
     if (!mimas_slices_range(sl, s - R, s + R, &k0, &k1))
@@ -121,7 +119,7 @@ static void add_particle(mimas_axial *a, const mimas_particles *p, size_t i)
             continue;
         double f = vol / V, *S = &a->sum[k * MIMAS_AS_NSUMS];
         S[MIMAS_AS_VOLUME] += vol;
-        S[MIMAS_AS_MOMENT] += m / V * mimas_tube_slab_moment(s, R, lo, hi);
+        S[MIMAS_AS_MOMENT] += m / V * mimas_tube_slab_moment(s, R, lo, hi, vol);
         S[MIMAS_AS_N] += f;
         S[MIMAS_AS_MASS] += m * f;
         for (int c = 0; c < 3; c++) {
@@ -284,18 +282,16 @@ static int prepare(mimas_axial *a, const mimas_frame *f, mimas_error *err)
         a->keep = k;
         a->keep_cap = p->n;
     }
-    for (size_t k = 0; k < p->n; k++) {
+    for (size_t k = 0; k < p->n; k++)
         a->keep[k] = (unsigned char)mimas_particle_selected(p, k, a->o.types, a->o.ntypes,
                                                             a->o.exclude);
-        if (a->keep[k] && a->o.check_inside &&
-            (rc = mimas_tube_check_particle(&a->o.geom, f, k, err)))
-            return rc;
-    }
     return MIMAS_OK;
 }
 
-static void frame_totals(mimas_axial *a, const mimas_particles *p)
+/* Every particle once: inside the tube, its slices, the frame's totals. */
+static int add_particles(mimas_axial *a, const mimas_frame *f, mimas_error *err)
 {
+    const mimas_particles *p = &f->particles;
     const mimas_tube_geom *g = &a->o.geom;
     const mimas_slices *sl = &a->o.slices;
     double lo = isfinite(g->length) ? 0.0 : sl->s0;
@@ -305,21 +301,23 @@ static void frame_totals(mimas_axial *a, const mimas_particles *p)
     for (size_t i = 0; i < p->n; i++) {
         if (!a->keep[i])
             continue;
-        double s, r, phi, v[3];
-        mimas_tube_coords(g, p->pos[i], &s, &r, &phi);
+        double s, r, v[3], R = p->radius[i];
+        mimas_tube_point(g, p->pos[i], p->vel[i], &s, &r, v);
+        if (a->o.check_inside && !(r + 0.5 * R <= g->radius))
+            return mimas_tube_check_particle(g, f, i, err);
+        add_particle(a, p, i, s, v);
         if (s >= lo && s <= hi) {
             t.particles += 1;
             t.mass += p->mass[i];
         }
         if (!isnan(a->o.flow_at)) {
-            double R = p->radius[i], vol = mimas_tube_slab_volume(s, R, fl, fh);
-            if (vol > 0) {
-                mimas_tube_vector(g, p->pos[i], p->vel[i], v);
+            double vol = mimas_tube_slab_volume(s, R, fl, fh);
+            if (vol > 0)
                 t.flow_rate += p->mass[i] * vol / (4.0 / 3.0 * M_PI * R * R * R) * v[0] / sl->w;
-            }
         }
     }
     a->totals = t;
+    return MIMAS_OK;
 }
 
 typedef struct contact_visit {
@@ -347,17 +345,14 @@ int mimas_axial_compute(mimas_axial *a, const mimas_frame *f, mimas_error *err)
     if (rc)
         return rc;
     memset(a->sum, 0, a->o.slices.n * MIMAS_AS_NSUMS * sizeof *a->sum);
-    const mimas_particles *p = &f->particles;
-    for (size_t i = 0; i < p->n; i++)
-        if (a->keep[i])
-            add_particle(a, p, i);
+    if ((rc = add_particles(a, f, err)))
+        return rc;
     contact_visit v = {a, f};
     mimas_contacts_visit(f, a->keep, 0, 1, visit_pair, visit_wall, &v);
     int gas = f->gas.present && f->gas.pressure;
     if (gas && (rc = add_gas(a, &f->gas, err)))
         return rc;
     derive(a, gas);
-    frame_totals(a, p);
     a->totals.gas = gas;
     return MIMAS_OK;
 }

@@ -172,7 +172,7 @@ int mimas_radial_sample(mimas_radial *r, const mimas_frame *f, const double *pla
             return rc;
         double l[3], v[3], a = p->radius[i], m = p->mass[i], er = NAN;
         mimas_axis_to_local(&r->o.geom.axis, p->pos[i], l);
-        mimas_tube_vector(&r->o.geom, p->pos[i], p->vel[i], v);
+        mimas_tube_vector(&r->o.geom, p->pos[i], p->vel[i], v); /* components at the particle */
         if (omega) {
             const double *w = p->omega[i];
             er = 0.5 * 0.4 * m * a * a * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);

@@ -42,17 +42,26 @@ void mimas_tube_coords(const mimas_tube_geom *g, const double x[3], double *s, d
     *phi = atan2(l[1], l[0]);
 }
 
-void mimas_tube_vector(const mimas_tube_geom *g, const double x[3], const double v[3],
-                       double out[3])
+void mimas_tube_point(const mimas_tube_geom *g, const double x[3], const double v[3], double *s,
+                      double *r, double out[3])
 {
     double l[3], w[3];
     mimas_axis_to_local(&g->axis, x, l);
     mimas_axis_vector_to_local(&g->axis, v, w);
-    double r = hypot(l[0], l[1]);
-    double c = r > 0 ? l[0] / r : 1.0, sn = r > 0 ? l[1] / r : 0.0;
+    double rr = sqrt(l[0] * l[0] + l[1] * l[1]);
+    double c = rr > 0 ? l[0] / rr : 1.0, sn = rr > 0 ? l[1] / rr : 0.0;
     out[0] = w[2];
     out[1] = c * w[0] + sn * w[1];
     out[2] = -sn * w[0] + c * w[1];
+    *s = l[2];
+    *r = rr;
+}
+
+void mimas_tube_vector(const mimas_tube_geom *g, const double x[3], const double v[3],
+                       double out[3])
+{
+    double s, r;
+    mimas_tube_point(g, x, v, &s, &r, out);
 }
 
 double mimas_tube_slab_volume(double c, double a, double s0, double s1)
@@ -62,7 +71,7 @@ double mimas_tube_slab_volume(double c, double a, double s0, double s1)
     return overlap_sphere_box(centre, a, lo, hi);
 }
 
-double mimas_tube_slab_moment(double c, double a, double s0, double s1)
+double mimas_tube_slab_moment(double c, double a, double s0, double s1, double volume)
 {
     double xa = fmax(s0 - c, -a), xb = fmin(s1 - c, a);
     if (!(a > 0) || !(xa < xb))
@@ -70,7 +79,7 @@ double mimas_tube_slab_moment(double c, double a, double s0, double s1)
     /* pi int_xa^xb (c + x)(a^2 - x^2) dx */
     double a2 = a * a;
     double m1 = 0.5 * a2 * (xb * xb - xa * xa) - 0.25 * (xb * xb * xb * xb - xa * xa * xa * xa);
-    return c * mimas_tube_slab_volume(c, a, s0, s1) + M_PI * m1;
+    return c * volume + M_PI * m1;
 }
 
 int mimas_slices_set(mimas_slices *sl, double s0, double s1, double w, mimas_error *err)
@@ -108,8 +117,8 @@ int mimas_tube_check_particle(const mimas_tube_geom *g, const mimas_frame *f, si
                               mimas_error *err)
 {
     const mimas_particles *p = &f->particles;
-    double s, r, phi, a = p->radius ? p->radius[i] : 0.0;
-    mimas_tube_coords(g, p->pos[i], &s, &r, &phi);
+    double s, r, v[3], zero[3] = {0, 0, 0}, a = p->radius ? p->radius[i] : 0.0;
+    mimas_tube_point(g, p->pos[i], zero, &s, &r, v);
     if (r + 0.5 * a <= g->radius)
         return MIMAS_OK;
     return mimas_error_set(err, MIMAS_EDATA,

@@ -43,8 +43,13 @@ void mimas_tube_vector(const mimas_tube_geom *g, const double x[3], const double
  * where c is the ball's axial coordinate (a spherical segment; exact). */
 double mimas_tube_slab_volume(double c, double a, double s0, double s1);
 /* Its first moment: the integral of s over that part of the ball, so that
- * moment / volume is the part's axial centre (exact). */
-double mimas_tube_slab_moment(double c, double a, double s0, double s1);
+ * moment / volume is the part's axial centre (exact); volume is that part's
+ * volume (mimas_tube_slab_volume, computed once by the caller). */
+double mimas_tube_slab_moment(double c, double a, double s0, double s1, double volume);
+/* s and r of the point x and the components (s, r, phi) of the vector v
+ * there, in one pass (no angle computed). */
+void mimas_tube_point(const mimas_tube_geom *g, const double x[3], const double v[3], double *s,
+                      double *r, double out[3]);
 
 /* Regular slices of width w along the axis from s0: slice k is
  * [s0 + k w, s0 + (k + 1) w]. */
