@@ -82,17 +82,18 @@ int mimas_plugs_detect(const mimas_axial *ax, const mimas_plug_options *o, size_
 }
 
 void mimas_plug_profile(const mimas_axial *ax, const mimas_plug *plug,
-                        const mimas_profile_bins *bins, double *values)
+                        const mimas_profile_bins *bins, double *values, size_t *count)
 {
     const mimas_slices *sl = &mimas_axial_opts(ax)->slices;
     size_t nv = bins->n * MIMAS_AX_NFIELDS;
-    /* counts in a second half of the work: values holds sums first */
-    for (size_t q = 0; q < nv; q++)
+    /* values holds sums first */
+    for (size_t q = 0; q < nv; q++) {
         values[q] = 0.0;
-    size_t *count = calloc(nv, sizeof *count);
+        count[q] = 0;
+    }
     double lo = plug->centre + bins->lo * bins->d, hi = lo + (double)bins->n * bins->w * bins->d;
     size_t k0, k1;
-    if (count && mimas_slices_range(sl, lo, hi, &k0, &k1))
+    if (mimas_slices_range(sl, lo, hi, &k0, &k1))
         for (size_t k = k0; k <= k1; k++) {
             double x = (mimas_slice_centre(sl, k) - plug->centre) / bins->d;
             double b = floor((x - bins->lo) / bins->w);
@@ -108,6 +109,5 @@ void mimas_plug_profile(const mimas_axial *ax, const mimas_plug *plug,
             }
         }
     for (size_t q = 0; q < nv; q++)
-        values[q] = count && count[q] ? values[q] / (double)count[q] : NAN;
-    free(count);
+        values[q] = count[q] ? values[q] / (double)count[q] : NAN;
 }

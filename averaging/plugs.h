@@ -55,9 +55,10 @@ typedef struct mimas_profile_bins {
 } mimas_profile_bins;
 /* The plug-centred profile of one plug: for each bin and axial field the
  * mean over the slices whose centre falls into the bin, NaN where none
- * (values: n x MIMAS_AX_NFIELDS). */
+ * (values: n x MIMAS_AX_NFIELDS); count is a workspace of as many
+ * elements. */
 void mimas_plug_profile(const mimas_axial *ax, const mimas_plug *plug,
-                        const mimas_profile_bins *bins, double *values);
+                        const mimas_profile_bins *bins, double *values, size_t *count);
 
 #ifdef __cplusplus
 }

@@ -112,6 +112,7 @@ static int run(size_t particles, int frames)
     mimas_tracker_create(&tr, &to, &err);
     mimas_plug_options po = {0.6, t.d};
     mimas_plug_list l = {0};
+    size_t *cnt = malloc(to.bins.n * MIMAS_AX_NFIELDS * sizeof *cnt);
     double *prof = malloc(PLUG_MAX * 2 * to.bins.n * MIMAS_AX_NFIELDS * sizeof *prof);
     double t_prof = 0, t_all = 0;
     long peak[3] = {0, 0, 0};
@@ -123,7 +124,8 @@ static int run(size_t particles, int frames)
             return fprintf(stderr, "%s\n", err.msg), 1;
         double a1 = now();
         for (size_t j = 0; j < l.n && j < 2 * PLUG_MAX; j++)
-            mimas_plug_profile(ax, &l.p[j], &to.bins, &prof[j * to.bins.n * MIMAS_AX_NFIELDS]);
+            mimas_plug_profile(ax, &l.p[j], &to.bins, &prof[j * to.bins.n * MIMAS_AX_NFIELDS],
+                               cnt);
         if (l.n <= 2 * PLUG_MAX && mimas_tracker_add(tr, f.time, &l, prof, &err))
             return fprintf(stderr, "%s\n", err.msg), 1;
         double a2 = now();
@@ -150,6 +152,7 @@ static int run(size_t particles, int frames)
     mimas_tracker_free(tr);
     mimas_plug_list_free(&l);
     free(prof);
+    free(cnt);
     return 0;
 }
 

@@ -206,6 +206,7 @@ typedef struct plugs_run {
     mimas_plug_list list;
     double *prof;
     size_t prof_cap;
+    size_t *prof_count;        /* bins x fields, the profiles' workspace */
     /* outputs */
     mimas_h5out *h5;
     cli_output plug_out, axial_out;
@@ -337,9 +338,12 @@ static int one_frame(plugs_run *u, const mimas_frame *f, mimas_error *err)
         u->prof = p;
         u->prof_cap = need;
     }
+    if (!u->prof_count &&
+        !(u->prof_count = malloc((u->to.bins.n * MIMAS_AX_NFIELDS + 1) * sizeof *u->prof_count)))
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
     for (size_t j = 0; j < u->list.n; j++)
         mimas_plug_profile(u->ax, &u->list.p[j], &u->to.bins,
-                           &u->prof[j * u->to.bins.n * MIMAS_AX_NFIELDS]);
+                           &u->prof[j * u->to.bins.n * MIMAS_AX_NFIELDS], u->prof_count);
     if ((rc = mimas_tracker_add(u->tr, f->time, &u->list, u->prof, err)) ||
         (rc = frame_outputs(u, f, err)))
         return rc;
@@ -624,6 +628,7 @@ static void cleanup(plugs_run *u, mimas_error *err)
     mimas_tracker_free(u->tr);
     mimas_plug_list_free(&u->list);
     free(u->prof);
+    free(u->prof_count);
     (void)err;
 }
 

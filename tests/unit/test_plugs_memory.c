@@ -74,6 +74,7 @@ static void test_flat(void **state)
     mimas_otable *tab;
     assert_int_equal(mimas_otable_open(&tab, devnull, NULL, NULL, cols, 3, &err), 0);
     mimas_plug_list l = {0};
+    size_t *cnt = malloc(to.bins.n * MIMAS_AX_NFIELDS * sizeof *cnt);
     double *prof = malloc(8 * to.bins.n * MIMAS_AX_NFIELDS * sizeof *prof);
     mimas_frame f;
     mimas_frame_init(&f);
@@ -86,7 +87,8 @@ static void test_flat(void **state)
             fail_msg("%s", err.msg);
         assert_true(l.n >= 1 && l.n <= 8);
         for (size_t j = 0; j < l.n; j++)
-            mimas_plug_profile(ax, &l.p[j], &to.bins, &prof[j * to.bins.n * MIMAS_AX_NFIELDS]);
+            mimas_plug_profile(ax, &l.p[j], &to.bins, &prof[j * to.bins.n * MIMAS_AX_NFIELDS],
+                               cnt);
         if (mimas_tracker_add(tr, time, &l, prof, &err) ||
             mimas_spacetime_append(st, ax, k, time, &err))
             fail_msg("%s", err.msg);
@@ -107,6 +109,7 @@ static void test_flat(void **state)
     mimas_frame_free(&f);
     mimas_plug_list_free(&l);
     free(prof);
+    free(cnt);
     mimas_axial_free(ax);
     mimas_tracker_free(tr);
     if (late - early > 512)
