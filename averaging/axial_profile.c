@@ -297,7 +297,7 @@ static int add_particles(mimas_axial *a, const mimas_frame *f, mimas_error *err)
     double lo = isfinite(g->length) ? 0.0 : sl->s0;
     double hi = isfinite(g->length) ? g->length : sl->s0 + (double)sl->n * sl->w;
     double fl = a->o.flow_at - 0.5 * sl->w, fh = a->o.flow_at + 0.5 * sl->w;
-    mimas_axial_totals t = {0, 0, isnan(a->o.flow_at) ? NAN : 0.0, 0};
+    mimas_axial_totals t = {0, 0, isnan(a->o.flow_at) ? NAN : 0.0, 0, NAN};
     for (size_t i = 0; i < p->n; i++) {
         if (!a->keep[i])
             continue;
@@ -354,5 +354,15 @@ int mimas_axial_compute(mimas_axial *a, const mimas_frame *f, mimas_error *err)
         return rc;
     derive(a, gas);
     a->totals.gas = gas;
+    double first = NAN, last = NAN;
+    for (size_t k = 0; gas && k < a->o.slices.n; k++) {
+        double p = a->field[k * MIMAS_AX_NFIELDS + MIMAS_AX_GAS_P];
+        if (!isnan(p)) {
+            if (isnan(first))
+                first = p;
+            last = p;
+        }
+    }
+    a->totals.pressure_drop = first - last;
     return MIMAS_OK;
 }

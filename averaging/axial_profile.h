@@ -83,10 +83,13 @@ const double *mimas_axial_row(const mimas_axial *ax, size_t k);
  * when the length is known, else the slices' range), their mass; the
  * solid mass flow rate through the cross-section at flow_at (sum m_i v_s,i
  * f_i / W over the slab of one slice width centred there; NaN without
- * flow_at); whether the frame had gas fields. */
+ * flow_at); whether the frame had gas fields, and then the pressure drop:
+ * the gas pressure of the first minus that of the last slice that has one
+ * (NaN without gas fields). */
 typedef struct mimas_axial_totals {
     double particles, mass, flow_rate;
     int gas;
+    double pressure_drop;
 } mimas_axial_totals;
 mimas_axial_totals mimas_axial_frame_totals(const mimas_axial *ax);
 void mimas_axial_free(mimas_axial *ax);

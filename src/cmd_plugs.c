@@ -351,20 +351,8 @@ static int one_frame(plugs_run *u, const mimas_frame *f, mimas_error *err)
     mimas_sample_mean_add(&u->particles, t.particles);
     mimas_sample_mean_add(&u->mass, t.mass);
     mimas_sample_mean_add(&u->flow, t.flow_rate);
-    if (t.gas) {
-        /* the pressure drop: first minus last slice with a gas pressure */
-        double first = NAN, last = NAN;
-        for (size_t k = 0; k < u->ao.slices.n; k++) {
-            double p = mimas_axial_value(u->ax, k, MIMAS_AX_GAS_P);
-            if (!isnan(p)) {
-                if (isnan(first))
-                    first = p;
-                last = p;
-            }
-        }
-        if (!isnan(first))
-            mimas_sample_mean_add(&u->dp, first - last);
-    }
+    if (!isnan(t.pressure_drop))
+        mimas_sample_mean_add(&u->dp, t.pressure_drop);
     u->plugs_seen += u->list.n;
     u->frames++;
     return MIMAS_OK;

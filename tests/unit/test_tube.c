@@ -229,6 +229,7 @@ static void test_profile_fields(void **state)
     assert_close(mimas_axial_value(ax, 0, MIMAS_AX_T), 15.0 / 6.0, 1e-13);
     assert_true(isnan(mimas_axial_value(ax, 0, MIMAS_AX_WALL_FRICTION)));
     assert_true(isnan(mimas_axial_value(ax, 0, MIMAS_AX_GAS_P)));
+    assert_true(isnan(mimas_axial_frame_totals(ax).pressure_drop));
     mimas_axial_free(ax);
     /* only the radial and azimuthal components (Strauß 2005's horizontal ones) */
     o.temperature = MIMAS_TEMP_R | MIMAS_TEMP_PHI;
@@ -330,6 +331,8 @@ static void test_gas_pressure(void **state)
     for (size_t k = 0; k < o.slices.n; k++)
         assert_close(mimas_axial_value(ax, k, MIMAS_AX_GAS_P), 1000 + 50 * (2 + k + 0.5), 1e-10);
     assert_true(mimas_axial_frame_totals(ax).gas);
+    /* the drop from the first slice (cell 2) to the last (cell 9) */
+    assert_close(mimas_axial_frame_totals(ax).pressure_drop, -50.0 * 7, 1e-10);
     mimas_axial_free(ax);
     options_for(&o, 0.005, 0.0025, 0.0105, 0.001);
     assert_int_equal(mimas_axial_create(&ax, &o, &err), 0);
