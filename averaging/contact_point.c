@@ -58,7 +58,7 @@ void mimas_contacts_visit(const mimas_frame *f, const unsigned char *keep, size_
         if (!keep[i] && !keep[j])
             continue;
         if (keep[i] && keep[j]) {
-            /* f_ij (x) (r_i - r_j), the branch by the minimum image (PHYSICS 1) */
+            /* f_ij (x) (r_i - r_j), the branch by the minimum image (docs/theory.md §1) */
             double b[3] = {p->pos[i][0] - p->pos[j][0], p->pos[i][1] - p->pos[j][1],
                            p->pos[i][2] - p->pos[j][2]};
             mimas_box_min_image(&f->box, b);
