@@ -4,9 +4,10 @@
  * force + wall friction).  Writes the last FRAMES frames (every 0.01 s)
  * with contacts and wall contacts to a native file.  Usage:
  *   settle_column -o FILE [--count N] [--d D] [--radius R] [--friction MU]
- *                 [--time T] [--frames F] [--seed S]
+ *                 [--time T] [--frames F] [--seed S] [--kn K] [--dt DT]
  * Tube: the z axis, the cylinder wall of radius R (wall id 1), the bottom
- * plane z = 0 (wall id 2); dt = 3e-6 s; linear contacts k_n = 1000 N/m, k_t = 2/7 k_n,
+ * plane z = 0 (wall id 2); dt = 3e-6 s; linear contacts k_n = 1000 N/m (or
+ * --kn, --dt; dt must stay below t_c/50), k_t = 2/7 k_n,
  * restitution 0.3, friction MU for every pair and the walls; density
  * 2000 kg/m^3; gravity -9.81 m/s^2 along z.  The particles start on a loose
  * lattice inside the tube and fall. */
@@ -27,12 +28,13 @@ int main(int argc, char **argv)
 {
     const char *out = NULL;
     long count = 900, frames = 3, seed = 1;
-    double d = 2e-3, R = 5e-3, mu = 0.5, T = 0.6;
+    double d = 2e-3, R = 5e-3, mu = 0.5, T = 0.6, kn = 1000, dt = 3e-6;
     static const struct option opts[] = {
         {"output", required_argument, NULL, 'o'}, {"count", required_argument, NULL, 'n'},
         {"d", required_argument, NULL, 'd'}, {"radius", required_argument, NULL, 'R'},
         {"friction", required_argument, NULL, 'm'}, {"time", required_argument, NULL, 't'},
         {"frames", required_argument, NULL, 'f'}, {"seed", required_argument, NULL, 's'},
+        {"kn", required_argument, NULL, 'k'}, {"dt", required_argument, NULL, 'D'},
         {NULL, 0, NULL, 0}};
     int c;
     while ((c = getopt_long(argc, argv, "o:", opts, NULL)) != -1) {
@@ -45,6 +47,8 @@ int main(int argc, char **argv)
         case 't': T = atof(optarg); break;
         case 'f': frames = atol(optarg); break;
         case 's': seed = atol(optarg); break;
+        case 'k': kn = atof(optarg); break;
+        case 'D': dt = atof(optarg); break;
         default: fprintf(stderr, "settle_column: bad option\n"); return 1;
         }
     }
@@ -56,15 +60,15 @@ int main(int argc, char **argv)
     sim_scenario_defaults(&sc, SIM_BOX);
     sc.diameter = d;
     sc.density = 2000;
-    sc.dt = 3e-6;
+    sc.dt = dt;
     sc.gravity[2] = -9.81;
     sc.seed = seed;
     for (int i = 0; i < SIM_MAX_TYPES; i++)
         for (int j = 0; j < SIM_MAX_TYPES; j++) {
             sim_contact_params *p = &sc.contact[i][j];
             p->model = SIM_LINEAR;
-            p->k_n = 1000;
-            p->k_t = 1000 * 2.0 / 7.0;
+            p->k_n = kn;
+            p->k_t = kn * 2.0 / 7.0;
             p->restitution = 0.3;
             p->gamma_t = 0;
             p->friction = mu;
@@ -73,10 +77,10 @@ int main(int argc, char **argv)
     mimas_error err;
     dem_system s;
     dem_init(&s);
-    /* a loose lattice: layers of spacing 1.1 d, in each the points of a
-     * square grid of spacing 1.1 d inside r <= R - 0.55 d, jittered */
-    double a = 1.1 * d, rmax = R - 0.55 * d;
-    int per = (int)floor(rmax / a);
+    /* a loose lattice: layers of spacing 1.03 d, in each the points of a
+     * hexagonal grid of spacing 1.03 d inside r <= R - 0.52 d, jittered */
+    double a = 1.03 * d, rmax = R - 0.52 * d;
+    int per = (int)floor(rmax / a) + 1;
     double height = a * (double)(count / 1 + 1);
     for (int q = 0; q < 2; q++) {
         s.lo[q] = -R - d;
@@ -91,7 +95,7 @@ int main(int argc, char **argv)
     for (int layer = 0; !rc && placed < count; layer++)
         for (int i = -per; i <= per && placed < count; i++)
             for (int j = -per; j <= per && placed < count; j++) {
-                double x[3] = {i * a, j * a, 0.6 * d + layer * a};
+                double x[3] = {(i + 0.5 * j) * a, j * a * sqrt(0.75), 0.6 * d + layer * a};
                 if (hypot(x[0], x[1]) > rmax)
                     continue;
                 for (int q = 0; q < 2; q++)
