@@ -77,10 +77,10 @@ int main(int argc, char **argv)
     mimas_error err;
     dem_system s;
     dem_init(&s);
-    /* a loose lattice: layers of spacing 1.03 d, in each the points of a
-     * hexagonal grid of spacing 1.03 d inside r <= R - 0.52 d, jittered */
-    double a = 1.03 * d, rmax = R - 0.52 * d;
-    int per = (int)floor(rmax / a) + 1;
+    /* a loose lattice: layers of spacing 1.1 d, in each the points of a
+     * square grid of spacing 1.1 d inside r <= R - 0.55 d, jittered */
+    double a = 1.1 * d, rmax = R - 0.55 * d;
+    int per = (int)floor(rmax / a);
     double height = a * (double)(count / 1 + 1);
     for (int q = 0; q < 2; q++) {
         s.lo[q] = -R - d;
@@ -95,7 +95,7 @@ int main(int argc, char **argv)
     for (int layer = 0; !rc && placed < count; layer++)
         for (int i = -per; i <= per && placed < count; i++)
             for (int j = -per; j <= per && placed < count; j++) {
-                double x[3] = {(i + 0.5 * j) * a, j * a * sqrt(0.75), 0.6 * d + layer * a};
+                double x[3] = {i * a, j * a, 0.6 * d + layer * a};
                 if (hypot(x[0], x[1]) > rmax)
                     continue;
                 for (int q = 0; q < 2; q++)
