@@ -463,3 +463,26 @@ int cli_types_option(const cli_command *cmd, cli_types *t, int exclude, const ch
     t->exclude = exclude;
     return cli_parse_types(cmd, exclude ? "exclude-types" : "types", arg, t->types, 64, &t->n);
 }
+
+int cli_positive_option(const cli_command *cmd, const char *opt, const char *arg, double *v)
+{
+    if (cli_parse_double(arg, v) || !(*v > 0))
+        return cli_fail(cmd, 1, "--%s needs a positive number, not '%s'", opt, arg);
+    return 0;
+}
+
+int cli_pair_option(const cli_command *cmd, const char *opt, const char *placeholder,
+                    const char *arg, double *a, double *b)
+{
+    if (cli_parse_pair(arg, a, b))
+        return cli_fail(cmd, 1, "--%s needs %s with the first below the second, not '%s'", opt,
+                        placeholder, arg);
+    return 0;
+}
+
+int cli_every_option(const cli_command *cmd, struct cli_window *w, const char *arg)
+{
+    if (cli_parse_long(arg, &w->every) || w->every < 1)
+        return cli_fail(cmd, 1, "--every needs a positive whole number, not '%s'", arg);
+    return 0;
+}

@@ -99,6 +99,7 @@ int cli_types_option(const cli_command *cmd, cli_types *t, int exclude, const ch
 
 /* The frames a command uses: --from T0 --to T1 (simulation times) and
  * --every K of those. */
+struct cli_window;
 typedef struct cli_window {
     double from, to;
     int has_from, has_to;
@@ -128,6 +129,14 @@ int cli_parse_long(const char *s, long *v);
 int cli_parse_temperature(const cli_command *cmd, const char *arg, unsigned *bits);
 /* "A:B" with A < B (finite numbers); returns 0 on success. */
 int cli_parse_pair(const char *s, double *a, double *b);
+/* Option parsers that print the usage error naming --opt and return 1 on a
+ * bad argument, else 0: a positive number; A:B with A < B (placeholder
+ * names what A and B are, e.g. "S0:S1"); --every K (a positive whole
+ * number) into the window. */
+int cli_positive_option(const cli_command *cmd, const char *opt, const char *arg, double *v);
+int cli_pair_option(const cli_command *cmd, const char *opt, const char *placeholder,
+                    const char *arg, double *a, double *b);
+int cli_every_option(const cli_command *cmd, struct cli_window *w, const char *arg);
 /* --threads N (1..1024) into *threads; prints the usage error and returns 1 otherwise. */
 int cli_parse_threads(const cli_command *cmd, const char *arg, int *threads);
 

@@ -81,41 +81,27 @@ typedef struct plugs_args {
     cli_types types;
 } plugs_args;
 
-static int positive(const plugs_args *a, const char *opt, const char *arg, double *v)
-{
-    if (cli_parse_double(arg, v) || !(*v > 0))
-        return cli_fail(a->cmd, 1, "--%s needs a positive number, not '%s'", opt, arg);
-    return 0;
-}
-
-static int pair(const plugs_args *a, const char *opt, const char *arg, double *x, double *y)
-{
-    if (cli_parse_pair(arg, x, y))
-        return cli_fail(a->cmd, 1, "--%s needs A:B with A < B, not '%s'", opt, arg);
-    return 0;
-}
-
 static int on_option(void *ctx, size_t opt, const char *arg)
 {
     plugs_args *a = ctx;
     switch (opt) {
     case O_AXIS: a->axis = arg; return 0;
-    case O_RADIUS: return positive(a, "tube-radius", arg, &a->radius);
-    case O_RANGE: a->has_range = 1; return pair(a, "range", arg, &a->s0, &a->s1);
-    case O_SLICE: return positive(a, "slice", arg, &a->slice);
-    case O_DIAMETER: return positive(a, "diameter", arg, &a->diameter);
+    case O_RADIUS: return cli_positive_option(a->cmd, "tube-radius", arg, &a->radius);
+    case O_RANGE: a->has_range = 1; return cli_pair_option(a->cmd, "range", "S0:S1", arg, &a->s0, &a->s1);
+    case O_SLICE: return cli_positive_option(a->cmd, "slice", arg, &a->slice);
+    case O_DIAMETER: return cli_positive_option(a->cmd, "diameter", arg, &a->diameter);
     case O_TEMP: return cli_parse_temperature(a->cmd, arg, &a->temperature);
     case O_THRESHOLD:
         if (cli_parse_double(arg, &a->threshold) || !(a->threshold > 0) || !(a->threshold <= 1))
             return cli_fail(a->cmd, 1, "--threshold needs a porosity in (0, 1], not '%s'", arg);
         return 0;
-    case O_MINLEN: return positive(a, "min-length", arg, &a->min_length);
-    case O_MAXSHIFT: return positive(a, "max-shift", arg, &a->max_shift);
-    case O_PRANGE: return pair(a, "profile-range", arg, &a->p0, &a->p1);
-    case O_PBIN: return positive(a, "profile-bin", arg, &a->pbin);
-    case O_VWIN: return pair(a, "velocity-window", arg, &a->v0, &a->v1);
-    case O_LWIN: return pair(a, "length-window", arg, &a->l0, &a->l1);
-    case O_SWIN: return positive(a, "stats-window", arg, &a->stats_w);
+    case O_MINLEN: return cli_positive_option(a->cmd, "min-length", arg, &a->min_length);
+    case O_MAXSHIFT: return cli_positive_option(a->cmd, "max-shift", arg, &a->max_shift);
+    case O_PRANGE: return cli_pair_option(a->cmd, "profile-range", "A:B", arg, &a->p0, &a->p1);
+    case O_PBIN: return cli_positive_option(a->cmd, "profile-bin", arg, &a->pbin);
+    case O_VWIN: return cli_pair_option(a->cmd, "velocity-window", "V0:V1", arg, &a->v0, &a->v1);
+    case O_LWIN: return cli_pair_option(a->cmd, "length-window", "L0:L1", arg, &a->l0, &a->l1);
+    case O_SWIN: return cli_positive_option(a->cmd, "stats-window", arg, &a->stats_w);
     case O_FLOWAT:
         if (cli_parse_double(arg, &a->flow_at))
             return cli_fail(a->cmd, 1, "--flow-at needs an axial position (m), not '%s'", arg);
@@ -133,10 +119,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_OUTPUT: a->output = arg; return 0;
     case O_FROM:
     case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
-    case O_EVERY:
-        if (cli_parse_long(arg, &a->window.every) || a->window.every < 1)
-            return cli_fail(a->cmd, 1, "--every needs a positive whole number, not '%s'", arg);
-        return 0;
+    case O_EVERY: return cli_every_option(a->cmd, &a->window, arg);
     case O_TYPES:
     case O_EXCLUDE: return cli_types_option(a->cmd, &a->types, opt == O_EXCLUDE, arg);
     }

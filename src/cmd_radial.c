@@ -57,52 +57,34 @@ typedef struct radial_args {
     cli_types types;
 } radial_args;
 
-static int positive(const radial_args *a, const char *opt, const char *arg, double *v)
-{
-    if (cli_parse_double(arg, v) || !(*v > 0))
-        return cli_fail(a->cmd, 1, "--%s needs a positive number, not '%s'", opt, arg);
-    return 0;
-}
-
-static int window_pair(const radial_args *a, const char *opt, const char *arg, double *x,
-                       double *y)
-{
-    if (cli_parse_pair(arg, x, y))
-        return cli_fail(a->cmd, 1, "--%s needs S0:S1 with S0 < S1, not '%s'", opt, arg);
-    return 0;
-}
-
 static int on_option(void *ctx, size_t opt, const char *arg)
 {
     radial_args *a = ctx;
     switch (opt) {
     case O_AXIS: a->axis = arg; return 0;
-    case O_RADIUS: return positive(a, "tube-radius", arg, &a->radius);
-    case O_PROBE: return positive(a, "probe", arg, &a->probe);
+    case O_RADIUS: return cli_positive_option(a->cmd, "tube-radius", arg, &a->radius);
+    case O_PROBE: return cli_positive_option(a->cmd, "probe", arg, &a->probe);
     case O_PLANES:
         if (cli_parse_long(arg, &a->planes) || a->planes < 1 || a->planes > 1000)
             return cli_fail(a->cmd, 1, "--planes needs a whole number 1..1000, not '%s'", arg);
         return 0;
-    case O_SPREAD: return positive(a, "plane-spread", arg, &a->spread);
-    case O_DR: return positive(a, "dr", arg, &a->dr);
-    case O_AT: a->has_at = 1; return window_pair(a, "at", arg, &a->at0, &a->at1);
+    case O_SPREAD: return cli_positive_option(a->cmd, "plane-spread", arg, &a->spread);
+    case O_DR: return cli_positive_option(a->cmd, "dr", arg, &a->dr);
+    case O_AT: a->has_at = 1; return cli_pair_option(a->cmd, "at", "S0:S1", arg, &a->at0, &a->at1);
     case O_INPLUGS: a->in_plugs = 1; return 0;
-    case O_DIAMETER: return positive(a, "diameter", arg, &a->diameter);
+    case O_DIAMETER: return cli_positive_option(a->cmd, "diameter", arg, &a->diameter);
     case O_TEMP: return cli_parse_temperature(a->cmd, arg, &a->temperature);
-    case O_SLICE: return positive(a, "slice", arg, &a->slice);
-    case O_RANGE: a->has_range = 1; return window_pair(a, "range", arg, &a->s0, &a->s1);
+    case O_SLICE: return cli_positive_option(a->cmd, "slice", arg, &a->slice);
+    case O_RANGE: a->has_range = 1; return cli_pair_option(a->cmd, "range", "S0:S1", arg, &a->s0, &a->s1);
     case O_THRESHOLD:
         if (cli_parse_double(arg, &a->threshold) || !(a->threshold > 0) || !(a->threshold <= 1))
             return cli_fail(a->cmd, 1, "--threshold needs a porosity in (0, 1], not '%s'", arg);
         return 0;
-    case O_MINLEN: return positive(a, "min-length", arg, &a->min_length);
+    case O_MINLEN: return cli_positive_option(a->cmd, "min-length", arg, &a->min_length);
     case O_OUTPUT: a->output = arg; return 0;
     case O_FROM:
     case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
-    case O_EVERY:
-        if (cli_parse_long(arg, &a->window.every) || a->window.every < 1)
-            return cli_fail(a->cmd, 1, "--every needs a positive whole number, not '%s'", arg);
-        return 0;
+    case O_EVERY: return cli_every_option(a->cmd, &a->window, arg);
     case O_TYPES:
     case O_EXCLUDE: return cli_types_option(a->cmd, &a->types, opt == O_EXCLUDE, arg);
     }
