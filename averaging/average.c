@@ -3,6 +3,7 @@
 #include "average.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #ifdef _OPENMP
@@ -12,6 +13,7 @@
 #include "contact_point.h"
 #include "deposit.h"
 #include "fields.h"
+#include "parallel.h"
 #include "voronoi.h"
 
 struct mimas_average {
@@ -536,4 +538,88 @@ int mimas_average_fields(const mimas_average *a, double *fields, double *sd, dou
     }
     free(sums);
     return 0;
+}
+
+/* ---- the state for merging runs split over processes ---- */
+int mimas_average_pack(const mimas_average *a, mimas_bytes *out, mimas_error *err)
+{
+    size_t nf = mimas_fields_count(), ns = a->cells * NSUMS, nq = a->cells * nf;
+    size_t n = sizeof(uint64_t) + sizeof a->grid +
+               (ns + (a->opt.spread ? 3 * nq : 0)) * sizeof(double);
+    if (n > out->cap) {
+        unsigned char *p = realloc(out->data, n);
+        if (!p)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for %zu cells", a->cells);
+        out->data = p;
+        out->cap = n;
+    }
+    uint64_t frames = a->frames;
+    unsigned char *p = out->data;
+    memcpy(p, &frames, sizeof frames);
+    p += sizeof frames;
+    memcpy(p, &a->grid, sizeof a->grid);
+    p += sizeof a->grid;
+    memcpy(p, a->sum, ns * sizeof(double));
+    p += ns * sizeof(double);
+    if (a->opt.spread) {
+        memcpy(p, a->f_mean, nq * sizeof(double));
+        memcpy(p + nq * sizeof(double), a->f_m2, nq * sizeof(double));
+        memcpy(p + 2 * nq * sizeof(double), a->f_count, nq * sizeof(double));
+    }
+    out->n = n;
+    return MIMAS_OK;
+}
+
+int mimas_average_merge(mimas_average *a, const unsigned char *data, size_t n,
+                        mimas_error *err)
+{
+    size_t nf = mimas_fields_count(), ns = a->cells * NSUMS, nq = a->cells * nf;
+    if (n != sizeof(uint64_t) + sizeof a->grid +
+                 (ns + (a->opt.spread ? 3 * nq : 0)) * sizeof(double))
+        return mimas_error_set(err, MIMAS_EDATA, "an average state of %zu bytes does not fit "
+                               "%zu cells", n, a->cells);
+    uint64_t frames;
+    memcpy(&frames, data, sizeof frames);
+    data += sizeof frames;
+    /* an average without frames takes the grid of the state (as fitted to its
+     * first frame); otherwise a keeps its own */
+    if (a->frames == 0)
+        memcpy(&a->grid, data, sizeof a->grid);
+    data += sizeof a->grid;
+    for (size_t k = 0; k < ns; k++) {
+        double v;
+        memcpy(&v, data + k * sizeof v, sizeof v);
+        a->sum[k] += v;
+    }
+    data += ns * sizeof(double);
+    for (size_t k = 0; a->opt.spread && k < nq; k++) {
+        double mb, m2b, nb;
+        memcpy(&mb, data + k * sizeof mb, sizeof mb);
+        memcpy(&m2b, data + (nq + k) * sizeof m2b, sizeof m2b);
+        memcpy(&nb, data + (2 * nq + k) * sizeof nb, sizeof nb);
+        double na = a->f_count[k], nt = na + nb;
+        if (nb == 0)
+            continue;
+        double delta = mb - a->f_mean[k];
+        a->f_mean[k] += delta * nb / nt;
+        a->f_m2[k] += m2b + delta * delta * na * nb / nt;
+        a->f_count[k] = nt;
+    }
+    a->frames += (size_t)frames;
+    return MIMAS_OK;
+}
+
+static int pack_any(const void *obj, mimas_bytes *out, mimas_error *err)
+{
+    return mimas_average_pack(obj, out, err);
+}
+
+static int merge_any(void *obj, const unsigned char *data, size_t n, mimas_error *err)
+{
+    return mimas_average_merge(obj, data, n, err);
+}
+
+int mimas_average_reduce(mimas_average *a, mimas_error *err)
+{
+    return mimas_par_reduce(a, pack_any, merge_any, err);
 }

@@ -1,6 +1,9 @@
 #include <config.h>
 
 #include "cli.h"
+#include "outfile.h"
+
+#include "parallel.h"
 
 #include <errno.h>
 #include <getopt.h>
@@ -103,6 +106,9 @@ int cli_open_inputs(const cli_command *cmd, cli_inputs *in, int argc, char **arg
 
 int cli_fail(const cli_command *cmd, int status, const char *fmt, ...)
 {
+    /* under MPI every rank agrees on the failure; one of them says it */
+    if (mimas_par_rank() != 0)
+        return status;
     va_list ap;
     fprintf(stderr, "mimas %s: ", cmd->name);
     va_start(ap, fmt);
@@ -219,7 +225,8 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler
         if (c == -1)
             break;
         if (c == 'h') {
-            cli_print_help(cmd, stdout);
+            if (mimas_par_rank() == 0)
+                cli_print_help(cmd, stdout);
             return -1;
         }
         if (c == '?')
@@ -325,6 +332,13 @@ int cli_window_time(const cli_command *cmd, cli_window *w, int from, const char 
     return 0;
 }
 
+int cli_window_every(const cli_command *cmd, cli_window *w, const char *arg)
+{
+    if (cli_parse_long(arg, &w->every) || w->every < 1)
+        return cli_fail(cmd, 1, "--every needs a positive whole number, not '%s'", arg);
+    return 0;
+}
+
 int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mimas_error *err)
 {
     if ((w->has_from || w->has_to) && isnan(f->time)) {
@@ -362,21 +376,38 @@ static double seconds(void)
 
 void cli_progress_start(cli_progress *p, const cli_inputs *in)
 {
-    p->on = !in->quiet && isatty(STDERR_FILENO);
+    p->on = !in->quiet && isatty(STDERR_FILENO) && mimas_par_rank() == 0;
     p->last = seconds();
+}
+
+/* Whether a progress line is due (on, and half a second since the last). */
+static int progress_due(cli_progress *p)
+{
+    if (!p->on)
+        return 0;
+    double now = seconds();
+    if (now - p->last < 0.5)
+        return 0;
+    p->last = now;
+    return 1;
 }
 
 void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, long long step,
                         double time)
 {
-    if (!p->on)
+    if (!progress_due(p))
         return;
-    double now = seconds();
-    if (now - p->last < 0.5)
-        return;
-    p->last = now;
     fprintf(stderr, "\rmimas %s: %zu frames (step %lld, time %g)   ", cmd->name, frames, step,
             time);
+    fflush(stderr);
+}
+
+void cli_progress_count(cli_progress *p, const cli_command *cmd, const char *what, size_t done,
+                        size_t total)
+{
+    if (!progress_due(p))
+        return;
+    fprintf(stderr, "\rmimas %s: %s %zu of %zu   ", cmd->name, what, done, total);
     fflush(stderr);
 }
 
@@ -394,8 +425,13 @@ int cli_output_open(cli_output *o, const char *path, mimas_error *err)
         return MIMAS_OK;
     }
     o->path = path;
-    snprintf(o->tmp, sizeof o->tmp, "%s.tmp%ld", path, (long)getpid());
-    o->fp = fopen(o->tmp, "w");
+    /* a device or a pipe takes the table as it comes: renamed onto, a
+     * finished file would replace it */
+    if (mimas_output_is_special(path))
+        o->tmp[0] = '\0';
+    else
+        snprintf(o->tmp, sizeof o->tmp, "%s.tmp%ld", path, (long)getpid());
+    o->fp = fopen(o->tmp[0] ? o->tmp : path, "w");
     if (!o->fp)
         return mimas_error_set(err, MIMAS_EIO, "%s: cannot write: %s", path, strerror(errno));
     return MIMAS_OK;
@@ -411,9 +447,9 @@ int cli_output_close(cli_output *o, int ok, mimas_error *err)
             rc = mimas_error_set(err, MIMAS_EIO, "cannot write the table");
     } else {
         int closed = fclose(o->fp) == 0;
-        if (ok && (!closed || rename(o->tmp, o->path) != 0))
+        if (ok && (!closed || (o->tmp[0] && rename(o->tmp, o->path) != 0)))
             rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", o->path);
-        if (!ok || rc)
+        if ((!ok || rc) && o->tmp[0])
             remove(o->tmp);
     }
     o->fp = NULL;
@@ -477,12 +513,5 @@ int cli_pair_option(const cli_command *cmd, const char *opt, const char *placeho
     if (cli_parse_pair(arg, a, b))
         return cli_fail(cmd, 1, "--%s needs %s with the first below the second, not '%s'", opt,
                         placeholder, arg);
-    return 0;
-}
-
-int cli_every_option(const cli_command *cmd, struct cli_window *w, const char *arg)
-{
-    if (cli_parse_long(arg, &w->every) || w->every < 1)
-        return cli_fail(cmd, 1, "--every needs a positive whole number, not '%s'", arg);
     return 0;
 }

@@ -66,6 +66,9 @@ typedef struct cli_progress {
 void cli_progress_start(cli_progress *p, const cli_inputs *in);
 void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, long long step,
                         double time);
+/* The same line for a count of things: "mimas CMD: WHAT DONE of TOTAL". */
+void cli_progress_count(cli_progress *p, const cli_command *cmd, const char *what, size_t done,
+                        size_t total);
 void cli_progress_done(cli_progress *p);
 
 /* A table written to standard output, or to a file under a temporary name
@@ -73,9 +76,10 @@ void cli_progress_done(cli_progress *p);
 typedef struct cli_output {
     FILE *fp;
     const char *path;   /* NULL: standard output */
-    char tmp[4200];
+    char tmp[4200];     /* "": written straight to path (a device or a pipe) */
 } cli_output;
-/* path NULL or "-": standard output. */
+/* path NULL or "-": standard output; a path that is not a regular file
+ * (/dev/null, a pipe) is written straight through. */
 int cli_output_open(cli_output *o, const char *path, mimas_error *err);
 /* Finishes the table: with ok, flushes (and renames the file into place);
  * else removes the temporary file.  Returns MIMAS_OK or a write error. */
@@ -99,7 +103,6 @@ int cli_types_option(const cli_command *cmd, cli_types *t, int exclude, const ch
 
 /* The frames a command uses: --from T0 --to T1 (simulation times) and
  * --every K of those. */
-struct cli_window;
 typedef struct cli_window {
     double from, to;
     int has_from, has_to;
@@ -109,6 +112,9 @@ typedef struct cli_window {
 /* --from (from = 1) or --to TIME into the window; prints the usage error
  * and returns 1 on a bad time. */
 int cli_window_time(const cli_command *cmd, cli_window *w, int from, const char *arg);
+/* --every K into the window; prints the usage error and returns 1 unless
+ * K is a positive whole number. */
+int cli_window_every(const cli_command *cmd, cli_window *w, const char *arg);
 /* 1 if frame f is used, 0 if not; MIMAS_EUSAGE (negated: -1) with err set
  * when the window needs a time the frame (of input) does not have. */
 int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mimas_error *err);
@@ -131,12 +137,10 @@ int cli_parse_temperature(const cli_command *cmd, const char *arg, unsigned *bit
 int cli_parse_pair(const char *s, double *a, double *b);
 /* Option parsers that print the usage error naming --opt and return 1 on a
  * bad argument, else 0: a positive number; A:B with A < B (placeholder
- * names what A and B are, e.g. "S0:S1"); --every K (a positive whole
- * number) into the window. */
+ * names what A and B are, e.g. "S0:S1"). */
 int cli_positive_option(const cli_command *cmd, const char *opt, const char *arg, double *v);
 int cli_pair_option(const cli_command *cmd, const char *opt, const char *placeholder,
                     const char *arg, double *a, double *b);
-int cli_every_option(const cli_command *cmd, struct cli_window *w, const char *arg);
 /* --threads N (1..1024) into *threads; prints the usage error and returns 1 otherwise. */
 int cli_parse_threads(const cli_command *cmd, const char *arg, int *threads);
 

@@ -119,7 +119,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_OUTPUT: a->output = arg; return 0;
     case O_FROM:
     case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
-    case O_EVERY: return cli_every_option(a->cmd, &a->window, arg);
+    case O_EVERY: return cli_window_every(a->cmd, &a->window, arg);
     case O_TYPES:
     case O_EXCLUDE: return cli_types_option(a->cmd, &a->types, opt == O_EXCLUDE, arg);
     }
