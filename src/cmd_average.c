@@ -1,4 +1,4 @@
-/* mimas average: continuum fields on a grid from any input (PHYSICS 6). */
+/* mimas average: continuum fields on a grid from any input (docs/theory.md §6). */
 #include <config.h>
 
 #include <errno.h>
@@ -19,10 +19,11 @@
 
 static const cli_option options[] = {
     {"grid", 0, "SPEC", "none, x=LO:HI:N[,y=..][,z=..], or r=LO:HI:N[,phi=LO:HI:N][,z=LO:HI:N]"},
-    {"weight", 0, "SPEC", "bins (exact overlaps), bins:center, gauss:w=W[,cutoff=C], lucy:c=C, "
-                          "shepard:w=W[,cutoff=C], voronoi (per-particle values of mimas "
-                          "voronoi -o, by the centre's cell), voronoi:w=W[,cutoff=C] (by a "
-                          "Gaussian)"},
+    {"weight", 0, "SPEC", "bins (exact overlaps), bins:center, gauss:w=W[,cutoff=C] (the "
+                          "Gaussian cut at C W, default 3, renormalised; ,shift: shifted to 0 "
+                          "there), lucy:c=C, shepard:w=W[,cutoff=C], voronoi (per-particle "
+                          "values of mimas voronoi -o, by the centre's cell), "
+                          "voronoi:w=W[,cutoff=C] (by a Gaussian)"},
     {"fields", 0, "LIST", "fields to write (comma list; 'stress' selects stress_*; default all)"},
     {"axis", 0, "X0,Y0,Z0,DX,DY,DZ", "axis of cylindrical grids (default: z through the origin)"},
     {"from", 0, "T0", "first time to use (s)"},
@@ -419,12 +420,14 @@ const cli_command cmd_average = {
     "continuum fields (density, velocity, stress, fabric, ...) on a grid",
     "[options] INPUT... --grid SPEC --weight SPEC",
     "Coarse-grains particles and contacts onto a Cartesian or cylindrical grid\n"
-    "(PHYSICS 6): number and mass density, solid fraction, velocity, kinetic,\n"
+    "(docs/theory.md §6): number and mass density, solid fraction, velocity, kinetic,\n"
     "contact and total stress (compression positive), pressure, shear stress,\n"
     "stress ratio, granular temperature, coordination number, fabric and wall\n"
     "force density (docs/fields.md).  Time averages are taken of the primary\n"
-    "sums; --errors adds the standard error over frames.  Writes a TSV table,\n"
-    "one row per cell: the gridded cell-centre coordinates, then the fields.",
+    "sums; --errors adds the standard error over frames.  Kernels are integrated\n"
+    "over the directions a grid leaves out, and averaged exactly over the azimuth\n"
+    "on cylindrical grids without phi cells.  Writes a TSV table, one row per\n"
+    "cell: the gridded cell-centre coordinates, then the fields.",
     options,
     sizeof options / sizeof options[0],
     1,
