@@ -27,7 +27,7 @@ static const cli_command *const commands[] = {
 /* The commands that split their frames over MPI ranks (docs/parallel.md). */
 static int frame_parallel(const char *name)
 {
-    static const char *const names[] = {"average", "voronoi", "shearband"};
+    static const char *const names[] = {"average", "voronoi", "shearband", "disperse"};
     for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
         if (!strcmp(names[k], name))
             return 1;
