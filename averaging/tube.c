@@ -117,9 +117,9 @@ int mimas_tube_check_particle(const mimas_tube_geom *g, const mimas_frame *f, si
                               mimas_error *err)
 {
     const mimas_particles *p = &f->particles;
-    double s, r, v[3], zero[3] = {0, 0, 0}, a = p->radius ? p->radius[i] : 0.0;
+    double s, r, v[3], zero[3] = {0, 0, 0};
     mimas_tube_point(g, p->pos[i], zero, &s, &r, v);
-    if (r + 0.5 * a <= g->radius)
+    if (r <= g->radius)
         return MIMAS_OK;
     return mimas_error_set(err, MIMAS_EDATA,
                            "particle %lld at r = %g m lies outside the tube of radius %g m "

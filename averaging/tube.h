@@ -65,9 +65,9 @@ double mimas_slice_centre(const mimas_slices *sl, size_t k);
 int mimas_slices_range(const mimas_slices *sl, double lo, double hi, size_t *k0, size_t *k1);
 
 /* Whether particle i of the frame lies inside the tube: its centre within
- * R + a/2 of the axis minus its radius a, i.e. r + a <= R + a/2 (an
- * overlap with the wall of up to half a radius is accepted).  Otherwise
- * MIMAS_EDATA naming the particle's id, r and R. */
+ * R of the axis (an overlap with the wall of up to its radius is accepted,
+ * as mimas simulate's blow-up check does).  Otherwise MIMAS_EDATA naming
+ * the particle's id, r and R. */
 int mimas_tube_check_particle(const mimas_tube_geom *g, const mimas_frame *f, size_t i,
                               mimas_error *err);
 

@@ -390,13 +390,17 @@ static void test_geometry(void **state)
     mimas_frame f;
     frame_of(&f, 2);
     set_particle(&f, 0, 0, 0, 0.01, 1e-3, 1e-5, 0, 0, 0);
-    set_particle(&f, 1, 0.0046, 0, 0.01, 1e-3, 1e-5, 0, 0, 0);
+    /* overlapping the wall by 0.9 of its radius: inside */
+    set_particle(&f, 1, 0.0049, 0, 0.01, 1e-3, 1e-5, 0, 0, 0);
     mimas_axial_options o;
     options_for(&o, 0.005, 0, 0.02, 0.001);
     mimas_axial *ax;
     assert_int_equal(mimas_axial_create(&ax, &o, &err), 0);
+    assert_int_equal(mimas_axial_compute(ax, &f, &err), 0);
+    /* its centre beyond the wall: outside */
+    f.particles.pos[1][0] = 0.0051;
     assert_int_equal(mimas_axial_compute(ax, &f, &err), MIMAS_EDATA);
-    assert_non_null(strstr(err.msg, "particle 2 at r = 0.0046 m lies outside the tube"));
+    assert_non_null(strstr(err.msg, "particle 2 at r = 0.0051 m lies outside the tube"));
     /* types: leaving it out is fine */
     int32_t keep[1] = {1};
     f.particles.type[1] = 2;
