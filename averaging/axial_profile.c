@@ -303,7 +303,7 @@ static int add_particles(mimas_axial *a, const mimas_frame *f, mimas_error *err)
             continue;
         double s, r, v[3], R = p->radius[i];
         mimas_tube_point(g, p->pos[i], p->vel[i], &s, &r, v);
-        if (a->o.check_inside && !(r + 0.5 * R <= g->radius))
+        if (a->o.check_inside && r > g->radius) /* mimas_tube_check_particle's test */
             return mimas_tube_check_particle(g, f, i, err);
         add_particle(a, p, i, s, v);
         if (s >= lo && s <= hi) {
