@@ -97,6 +97,12 @@ const double *mimas_axial_row(const mimas_axial *a, size_t k)
     return &a->field[k * MIMAS_AX_NFIELDS];
 }
 
+void mimas_axial_load(mimas_axial *ax, const double *values, const mimas_axial_totals *t)
+{
+    memcpy(ax->field, values, ax->o.slices.n * MIMAS_AX_NFIELDS * sizeof *ax->field);
+    ax->totals = *t;
+}
+
 mimas_axial_totals mimas_axial_frame_totals(const mimas_axial *a)
 {
     return a->totals;

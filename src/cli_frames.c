@@ -49,3 +49,27 @@ int cli_frames_next(cli_frames *s, mimas_frame *f, mimas_error *err)
             return rc;
     }
 }
+
+int cli_frames_first(cli_frames *s, mimas_frame *f,
+                     int (*decide)(void *ctx, const mimas_frame *f, void *data,
+                                   mimas_error *err),
+                     void *ctx, void *data, size_t n, int *have, mimas_error *err)
+{
+    int own = cli_frames_next(s, f, err);
+    *have = own == MIMAS_OK;
+    int root = s->rank == 0, status = own;
+    if (root && own == MIMAS_OK)
+        status = decide(ctx, f, data, err);
+    if (root && own == MIMAS_END)
+        status = mimas_error_set(err, MIMAS_EDATA, "%s: no frame in the selected time range",
+                                 s->input);
+    mimas_error mine = *err;
+    int shared = mimas_par_share(root ? status : MIMAS_OK, data, n, err);
+    if (shared)
+        return shared;
+    if (own != MIMAS_OK && own != MIMAS_END) {
+        *err = mine; /* this rank's reading failure: agreed on with the others' later */
+        return own;
+    }
+    return MIMAS_OK;
+}

@@ -24,4 +24,17 @@ void cli_frames_init(cli_frames *s, mimas_reader *r, cli_window *window, const c
  * is), MIMAS_END, or an error (position: the frame it belongs to). */
 int cli_frames_next(cli_frames *s, mimas_frame *f, mimas_error *err);
 
+/* The defaults a command takes from the data, decided once: every rank
+ * reads its first frame into f; rank 0 calls decide(ctx, f, data, err) on
+ * its frame (the first of the selection), which fills n bytes at data, and
+ * every rank gets them.  Returns MIMAS_OK with *have set when this rank
+ * holds a frame in f to work on (*have 0: none, the loop is over), or a
+ * failure: rank 0's (no frame in the time window, decide's), the same on
+ * every rank, or this rank's own reading failure (position says where;
+ * the ranks agree on it later, as for any frame). */
+int cli_frames_first(cli_frames *s, mimas_frame *f,
+                     int (*decide)(void *ctx, const mimas_frame *f, void *data,
+                                   mimas_error *err),
+                     void *ctx, void *data, size_t n, int *have, mimas_error *err);
+
 #endif
