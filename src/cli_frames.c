@@ -2,6 +2,8 @@
 
 #include "cli_frames.h"
 
+#include <stdint.h>
+
 #include "parallel.h"
 
 void cli_frames_init(cli_frames *s, mimas_reader *r, cli_window *window, const char *input)
@@ -72,4 +74,38 @@ int cli_frames_first(cli_frames *s, mimas_frame *f,
         return own;
     }
     return MIMAS_OK;
+}
+
+int cli_frames_run(cli_frames *s, const cli_frame_work *w, const cli_command *cmd,
+                   cli_progress *prog, mimas_error *err)
+{
+    mimas_par_ordered *order = NULL;
+    int status = mimas_par_ordered_open(&order, w->use, w->ctx, err);
+    status = mimas_par_agree(status, SIZE_MAX, err);
+    if (status)
+        return status;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    mimas_bytes result = {0};
+    int have = 0;
+    status = cli_frames_first(s, &f, w->decide, w->decide_ctx, w->data, w->n, &have, err);
+    if (!status)
+        status = w->setup(w->ctx, w->data, err);
+    if (!status && !have)
+        status = MIMAS_END;
+    while (status == MIMAS_OK) {
+        status = w->frame(w->ctx, &f, s->position, &result, err);
+        if (status && status != MIMAS_EIO && status != MIMAS_EUSAGE)
+            mimas_error_prefix(err, "%s: step %lld", s->input, (long long)f.step);
+        if (!status)
+            status = mimas_par_ordered_put(order, s->position, &result, err);
+        cli_progress_frame(prog, cmd, s->position + 1, (long long)f.step, f.time);
+        if (!status)
+            status = cli_frames_next(s, &f, err);
+    }
+    status = mimas_par_ordered_finish(order, status, s->position, err);
+    mimas_par_ordered_free(order);
+    mimas_bytes_free(&result);
+    mimas_frame_free(&f);
+    return status;
 }

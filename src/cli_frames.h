@@ -9,6 +9,7 @@
 #include <stddef.h>
 
 #include "cli.h"
+#include "parallel.h"
 
 typedef struct cli_frames {
     mimas_reader *r;
@@ -36,5 +37,32 @@ int cli_frames_first(cli_frames *s, mimas_frame *f,
                      int (*decide)(void *ctx, const mimas_frame *f, void *data,
                                    mimas_error *err),
                      void *ctx, void *data, size_t n, int *have, mimas_error *err);
+
+/* A frame-parallel command whose frames each give a small result that
+ * rank 0 uses in frame order (mimas plugs, mimas radial): the defaults from
+ * the data decided once (cli_frames_first), then every frame of this rank
+ * computed and its result used on rank 0 in the serial order, so that the
+ * output is the serial output. */
+typedef struct cli_frame_work {
+    void *ctx;
+    /* rank 0, on the first frame of the selection: fills n bytes at data
+     * (called with decide_ctx) */
+    int (*decide)(void *ctx, const mimas_frame *f, void *data, mimas_error *err);
+    void *decide_ctx;
+    void *data;
+    size_t n;
+    /* every rank, once, with the decided data */
+    int (*setup)(void *ctx, const void *data, mimas_error *err);
+    /* each frame of this rank (position: its place in the selection) */
+    int (*frame)(void *ctx, const mimas_frame *f, size_t position, mimas_bytes *result,
+                 mimas_error *err);
+    /* rank 0: every frame's result, in frame order */
+    mimas_par_sink_fn use;
+} cli_frame_work;
+/* Runs it over the frames of s; MIMAS_END when every frame was used, else
+ * the agreed failure, the same status and message on every rank (a
+ * frame's data failure named "INPUT: step N: ..."). */
+int cli_frames_run(cli_frames *s, const cli_frame_work *w, const cli_command *cmd,
+                   cli_progress *prog, mimas_error *err);
 
 #endif

@@ -11,7 +11,7 @@
 
 #include "axial_profile.h"
 #include "cli_frames.h"
-#include "cli_otable.h"
+#include "cli_tube.h"
 #include "cli_table.h"
 #include "commands.h"
 #include "frame_pack.h"
@@ -202,7 +202,6 @@ typedef struct plugs_run {
     double *prof;
     size_t prof_cap;
     size_t *prof_count;        /* bins x fields, the profiles' workspace */
-    mimas_bytes result;        /* a frame's result (pack_frame) */
     /* rank 0: a frame's result unpacked, in frame order */
     mimas_plug_list got;
     double *got_prof;
@@ -222,19 +221,13 @@ typedef struct plugs_run {
     size_t frames;
 } plugs_run;
 
-/* Rank 0, on the first frame of the selection: the geometry and extent. */
-static int decide(void *ctx, const mimas_frame *f, void *data, mimas_error *err)
-{
-    const plugs_args *a = ctx;
-    return mimas_tube_setup_from(data, a->axis, a->radius, f, a->types.types, a->types.n,
-                                 a->types.exclude, err);
-}
-
 /* The slices, detection and tracking options and the defaults that depend
  * on the data (ts: from the first frame, the same on every rank); rank 0
  * opens the per-frame outputs. */
-static int setup(plugs_run *u, const mimas_tube_setup *ts, mimas_error *err)
+static int setup(void *ctx, const void *data, mimas_error *err)
 {
+    plugs_run *u = ctx;
+    const mimas_tube_setup *ts = data;
     plugs_args *a = u->a;
     mimas_axial_options *o = &u->ao;
     memset(o, 0, sizeof *o);
@@ -319,12 +312,12 @@ typedef struct frame_head {
     mimas_axial_totals totals;
 } frame_head;
 
-static int pack_frame(plugs_run *u, const mimas_frame *f, mimas_error *err)
+static int pack_frame(const plugs_run *u, const mimas_frame *f, mimas_bytes *b,
+                      mimas_error *err)
 {
     size_t ns = u->ao.slices.n, np = u->list.n, nb = u->to.bins.n * MIMAS_AX_NFIELDS;
     size_t nf = ns * MIMAS_AX_NFIELDS * sizeof(double);
     size_t total = sizeof(frame_head) + nf + np * (sizeof(mimas_plug) + nb * sizeof(double));
-    mimas_bytes *b = &u->result;
     if (total > b->cap) {
         unsigned char *q = realloc(b->data, total);
         if (!q)
@@ -348,10 +341,12 @@ static int pack_frame(plugs_run *u, const mimas_frame *f, mimas_error *err)
 }
 
 /* The per-frame part: slice profiles, the frame's plugs and their
- * plug-centred profiles, packed into u->result; index: the frame's place in
+ * plug-centred profiles, packed into result; index: the frame's place in
  * the selection. */
-static int one_frame(plugs_run *u, const mimas_frame *f, size_t index, mimas_error *err)
+static int one_frame(void *ctx, const mimas_frame *f, size_t index, mimas_bytes *result,
+                     mimas_error *err)
 {
+    plugs_run *u = ctx;
     int rc = MIMAS_OK;
     if ((rc = mimas_axial_compute(u->ax, f, err)) ||
         (rc = mimas_plugs_detect(u->ax, &u->po, index, f->time, &u->list, err)))
@@ -370,7 +365,7 @@ static int one_frame(plugs_run *u, const mimas_frame *f, size_t index, mimas_err
     for (size_t j = 0; j < u->list.n; j++)
         mimas_plug_profile(u->ax, &u->list.p[j], &u->to.bins,
                            &u->prof[j * u->to.bins.n * MIMAS_AX_NFIELDS], u->prof_count);
-    return pack_frame(u, f, err);
+    return pack_frame(u, f, result, err);
 }
 
 static int frame_outputs(plugs_run *u, const frame_head *h, mimas_error *err)
@@ -715,7 +710,6 @@ static void cleanup(plugs_run *u, mimas_error *err)
     mimas_plug_list_free(&u->list);
     mimas_plug_list_free(&u->got);
     free(u->got_prof);
-    mimas_bytes_free(&u->result);
     free(u->prof);
     free(u->prof_count);
     (void)err;
@@ -791,40 +785,19 @@ static int run(const cli_command *cmd, int argc, char **argv)
         status = cli_otable_open(&u.plug_tab, plug_fp, &a.table, u.h5, "/plugs", plug_cols,
                                  NPLUGCOLS, &err);
     u.plug_on = root && !status;
-    mimas_par_ordered *order = NULL;
-    if (!status)
-        status = mimas_par_ordered_open(&order, use_frame, &u, &err);
     status = mimas_par_agree(status, SIZE_MAX, &err);
-    mimas_frame f;
-    mimas_frame_init(&f);
     cli_progress prog;
     cli_progress_start(&prog, &in);
     cli_frames frames;
     cli_frames_init(&frames, r, &a.window, argv[first]);
-    int have = 0;
-    if (!status) {
-        mimas_tube_setup ts;
-        memset(&ts, 0, sizeof ts);
-        status = cli_frames_first(&frames, &f, decide, &a, &ts, sizeof ts, &have, &err);
-        if (!status)
-            status = setup(&u, &ts, &err);
-        if (!status && !have)
-            status = MIMAS_END;
-        while (status == MIMAS_OK) {
-            status = one_frame(&u, &f, frames.position, &err);
-            if (status && status != MIMAS_EIO && status != MIMAS_EUSAGE)
-                mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
-            if (!status)
-                status = mimas_par_ordered_put(order, frames.position, &u.result, &err);
-            cli_progress_frame(&prog, cmd, frames.position + 1, (long long)f.step, f.time);
-            if (!status)
-                status = cli_frames_next(&frames, &f, &err);
-        }
-        status = mimas_par_ordered_finish(order, status, frames.position, &err);
-    }
-    mimas_par_ordered_free(order);
+    cli_tube_pick pick = {a.axis, a.radius, &a.types};
+    mimas_tube_setup ts;
+    memset(&ts, 0, sizeof ts);
+    cli_frame_work work = {&u, cli_tube_decide, &pick, &ts, sizeof ts, setup, one_frame,
+                           use_frame};
+    if (!status)
+        status = cli_frames_run(&frames, &work, cmd, &prog, &err);
     cli_progress_done(&prog);
-    mimas_frame_free(&f);
     mimas_reader_close(r);
     if (status == MIMAS_END && root)
         status = finish(&u, argc, argv, &err);

@@ -10,7 +10,7 @@
 
 #include "axial_profile.h"
 #include "cli_frames.h"
-#include "cli_otable.h"
+#include "cli_tube.h"
 #include "cli_table.h"
 #include "commands.h"
 #include "frame_pack.h"
@@ -110,19 +110,13 @@ typedef struct radial_run {
     double *planes;            /* the planes of a sample */
     size_t nplanes, cap;
     double spacing;            /* between the planes of a group */
-    mimas_bytes result;        /* a frame's samples: their count, then their values */
 } radial_run;
 
-/* Rank 0, on the first frame of the selection: the geometry and extent. */
-static int decide(void *ctx, const mimas_frame *f, void *data, mimas_error *err)
+/* The probes (ts: decided on the first frame, the same on every rank). */
+static int setup(void *ctx, const void *data, mimas_error *err)
 {
-    const radial_args *a = ctx;
-    return mimas_tube_setup_from(data, a->axis, a->radius, f, a->types.types, a->types.n,
-                                 a->types.exclude, err);
-}
-
-static int setup(radial_run *u, const mimas_tube_setup *ts, mimas_error *err)
-{
+    radial_run *u = ctx;
+    const mimas_tube_setup *ts = data;
     radial_args *a = u->a;
     mimas_radial_options o;
     memset(&o, 0, sizeof o);
@@ -176,11 +170,10 @@ static int setup(radial_run *u, const mimas_tube_setup *ts, mimas_error *err)
     return MIMAS_OK;
 }
 
-/* One sample's values appended to the frame's result. */
-static int keep_sample(radial_run *u, mimas_error *err)
+/* One sample's values appended to the frame's result b. */
+static int keep_sample(const radial_run *u, mimas_bytes *b, mimas_error *err)
 {
     size_t n = mimas_radial_nradii(u->rad) * MIMAS_RAD_NFIELDS * sizeof(double);
-    mimas_bytes *b = &u->result;
     if (b->n + n > b->cap) {
         size_t cap = 2 * (b->n + n);
         unsigned char *p = realloc(b->data, cap);
@@ -194,15 +187,17 @@ static int keep_sample(radial_run *u, mimas_error *err)
     return MIMAS_OK;
 }
 
-/* The frame's samples (a frame, or its plugs) into u->result, on the rank
+/* The frame's samples (the frame, or its plugs) into result, on the rank
  * that owns the frame; index: the frame's place in the selection. */
-static int one_frame(radial_run *u, const mimas_frame *f, size_t index, mimas_error *err)
+static int one_frame(void *ctx, const mimas_frame *f, size_t index, mimas_bytes *result,
+                     mimas_error *err)
 {
+    radial_run *u = ctx;
     int rc = MIMAS_OK;
-    u->result.n = 0;
+    result->n = 0;
     if (!u->ax) {
         rc = mimas_radial_probe(u->rad, f, u->planes, u->nplanes, err);
-        return rc ? rc : keep_sample(u, err);
+        return rc ? rc : keep_sample(u, result, err);
     }
     if ((rc = mimas_axial_compute(u->ax, f, err)) ||
         (rc = mimas_plugs_detect(u->ax, &u->po, index, f->time, &u->list, err)))
@@ -215,7 +210,7 @@ static int one_frame(radial_run *u, const mimas_frame *f, size_t index, mimas_er
         for (size_t k = 0; k < P; k++)
             u->planes[k] = p->centre + ((double)k - 0.5 * (double)(P - 1)) * u->spacing;
         if (!(rc = mimas_radial_probe(u->rad, f, u->planes, P, err)))
-            rc = keep_sample(u, err);
+            rc = keep_sample(u, result, err);
     }
     return rc;
 }
@@ -312,52 +307,25 @@ static int run(const cli_command *cmd, int argc, char **argv)
     memset(&u, 0, sizeof u);
     u.a = &a;
     mimas_error err;
-    mimas_frame f;
-    mimas_frame_init(&f);
     cli_progress prog;
     cli_progress_start(&prog, &in);
     /* under MPI: frame j on rank j mod N; the geometry from the first frame
      * (rank 0's), each frame's samples to rank 0 in frame order */
     cli_frames frames;
     cli_frames_init(&frames, r, &a.window, argv[first]);
-    mimas_par_ordered *order = NULL;
-    int status = mimas_par_ordered_open(&order, add_samples, &u, &err);
-    status = mimas_par_agree(status, SIZE_MAX, &err);
-    if (status) {
-        mimas_par_ordered_free(order);
-        mimas_reader_close(r);
-        cli_inputs_free(&in);
-        return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
-    }
+    cli_tube_pick pick = {a.axis, a.radius, &a.types};
     mimas_tube_setup ts;
     memset(&ts, 0, sizeof ts);
-    int have = 0;
-    status = cli_frames_first(&frames, &f, decide, &a, &ts, sizeof ts, &have, &err);
-    if (!status)
-        status = setup(&u, &ts, &err);
-    if (!status && !have)
-        status = MIMAS_END;
-    while (status == MIMAS_OK) {
-        status = one_frame(&u, &f, frames.position, &err);
-        if (status && status != MIMAS_EIO && status != MIMAS_EUSAGE)
-            mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
-        if (!status)
-            status = mimas_par_ordered_put(order, frames.position, &u.result, &err);
-        cli_progress_frame(&prog, cmd, frames.position + 1, (long long)f.step, f.time);
-        if (!status)
-            status = cli_frames_next(&frames, &f, &err);
-    }
+    cli_frame_work work = {&u, cli_tube_decide, &pick, &ts, sizeof ts, setup, one_frame,
+                           add_samples};
+    int status = cli_frames_run(&frames, &work, cmd, &prog, &err);
     cli_progress_done(&prog);
-    status = mimas_par_ordered_finish(order, status, frames.position, &err);
-    mimas_par_ordered_free(order);
-    mimas_frame_free(&f);
     mimas_reader_close(r);
     cli_inputs_free(&in);
     if (status == MIMAS_END && mimas_par_rank() == 0)
         status = write_results(&u, a.output, &err);
     status = mimas_par_share(status, NULL, 0, &err);
     mimas_radial_free(u.rad);
-    mimas_bytes_free(&u.result);
     mimas_axial_free(u.ax);
     mimas_plug_list_free(&u.list);
     free(u.planes);

@@ -1,15 +1,19 @@
-/* A table of the tube analyses (mimas plugs, mimas radial) written row by
+/* What the tube commands (mimas plugs, mimas radial) share: their tables
+ * and the decision they take on the first frame.
+ *
+ * A table is written row by
  * row to a text stream through the shared table writer (cli_table.h: exact
  * numbers, --csv, --digits, --units-header) and/or to a group of an HDF5
  * file (mimas_otable of averaging/plugs_output.h): one column list for
  * both. */
-#ifndef MIMAS_CLI_OTABLE_H
-#define MIMAS_CLI_OTABLE_H
+#ifndef MIMAS_CLI_TUBE_H
+#define MIMAS_CLI_TUBE_H
 
 #include <stdio.h>
 
 #include "cli_table.h"
 #include "plugs_output.h"
+#include "tube.h"
 
 typedef struct cli_otable {
     cli_table text;
@@ -29,5 +33,15 @@ int cli_otable_open(cli_otable *t, FILE *fp, const cli_table_options *o, mimas_h
 int cli_otable_row(cli_otable *t, const double *v, const char *const *text, mimas_error *err);
 /* Flushes and frees (a table never opened, zeroed, is fine). */
 int cli_otable_close(cli_otable *t, mimas_error *err);
+
+/* The options that fix the geometry, for the first frame. */
+typedef struct cli_tube_pick {
+    const char *axis;        /* --axis, or NULL */
+    double radius;           /* --tube-radius, or 0 */
+    const cli_types *types;  /* --types / --exclude-types */
+} cli_tube_pick;
+/* A cli_frame_work decide function (cli_frames.h): ctx a cli_tube_pick,
+ * data a mimas_tube_setup (mimas_tube_setup_from on the frame). */
+int cli_tube_decide(void *ctx, const mimas_frame *f, void *data, mimas_error *err);
 
 #endif

@@ -1,6 +1,6 @@
 #include <config.h>
 
-#include "cli_otable.h"
+#include "cli_tube.h"
 
 #include <string.h>
 
@@ -53,4 +53,11 @@ int cli_otable_close(cli_otable *t, mimas_error *err)
     int closed = mimas_otable_close(t->h5, err);
     t->h5 = NULL;
     return rc ? rc : closed;
+}
+
+int cli_tube_decide(void *ctx, const mimas_frame *f, void *data, mimas_error *err)
+{
+    const cli_tube_pick *p = ctx;
+    return mimas_tube_setup_from(data, p->axis, p->radius, f, p->types->types, p->types->n,
+                                 p->types->exclude, err);
 }
