@@ -14,6 +14,7 @@
 #include "deposit.h"
 #include "fields.h"
 #include "parallel.h"
+#include "simd.h"
 #include "voronoi.h"
 
 struct mimas_average {
@@ -199,9 +200,37 @@ typedef struct particle_vals {
     double stress[9];           /* V_cell sigma in the local basis */
 } particle_vals;
 
+/* The usual case in one tight loop: the particle block and the gradients. */
+MIMAS_SIMD
+static void add_particle_grad(double *restrict S0, const mimas_weights *ws,
+                              const particle_vals *p)
+{
+    double q[S_PARTICLE_END], qg[4];
+    memcpy(q, p->q, sizeof q);
+    memcpy(qg, p->qg, sizeof qg);
+    const size_t *cell = ws->cell;
+    const double *wv = ws->w, *grad = ws->grad;
+    for (size_t k = 0; k < ws->n; k++) {
+        double *restrict S = S0 + cell[k] * NSUMS, w = wv[k];
+        double g0 = grad[3 * k], g1 = grad[3 * k + 1], g2 = grad[3 * k + 2];
+        for (int m = 0; m < S_PARTICLE_END; m++)
+            S[m] += q[m] * w;
+        for (int m = 0; m < 4; m++)
+            S[S_G + m] += qg[m] * g0;
+        for (int m = 0; m < 4; m++)
+            S[S_G + 4 + m] += qg[m] * g1;
+        for (int m = 0; m < 4; m++)
+            S[S_G + 8 + m] += qg[m] * g2;
+    }
+}
+
 static void add_particle(double *S0, const mimas_weights *ws, const particle_vals *p,
                          int shepard, int voronoi)
 {
+    if (ws->has_grad && !shepard && !voronoi) {
+        add_particle_grad(S0, ws, p);
+        return;
+    }
     for (size_t k = 0; k < ws->n; k++) {
         double *S = S0 + ws->cell[k] * NSUMS, w = ws->w[k];
         for (int m = 0; m < S_PARTICLE_END; m++)
@@ -228,10 +257,15 @@ static void add_particle(double *S0, const mimas_weights *ws, const particle_val
     }
 }
 
-static void add_contact(double *S0, const mimas_weights *ws, const double q[18])
+MIMAS_SIMD
+static void add_contact(double *restrict S0, const mimas_weights *ws, const double *qin)
 {
+    double q[18];
+    memcpy(q, qin, sizeof q);
+    const size_t *cell = ws->cell;
+    const double *wv = ws->w;
     for (size_t k = 0; k < ws->n; k++) {
-        double *S = S0 + ws->cell[k] * NSUMS + S_C, w = ws->w[k];
+        double *restrict S = S0 + cell[k] * NSUMS + S_C, w = wv[k];
         for (int m = 0; m < 18; m++)
             S[m] += q[m] * w;
     }
