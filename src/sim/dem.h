@@ -1,6 +1,6 @@
 /* The state of a DEM simulation (mimas simulate): particles, walls, the
  * contact laws of every type pair and the Verlet neighbour list with the
- * contact history.  PHYSICS.md sections 2 and 3. */
+ * contact history.  docs/theory.md §2 and §3. */
 #ifndef MIMAS_SIM_DEM_H
 #define MIMAS_SIM_DEM_H
 
@@ -12,6 +12,9 @@
 #include "scenario.h"
 
 #define DEM_MAX_WALLS 8
+/* Systems smaller than this run their loops on one thread: waking the
+ * others would cost more than the work (a loaded machine makes it worse). */
+#define DEM_PARALLEL_MIN 1000
 
 enum { DEM_WALL_PLANE = 0, DEM_WALL_CYLINDER = 1 };
 
@@ -36,6 +39,12 @@ typedef struct dem_motion {
     double omega, axis[2], velocity[3];
     double angle, shift[3];  /* turned and moved so far */
     double cos_angle, sin_angle;   /* of angle, once per step for all its particles */
+    /* release plane (a feed): with release set, a particle of this motion
+     * becomes free (keeping its velocity) once release_normal . x >=
+     * release_offset, and takes the type release_type (0: keeps its own) */
+    int release;
+    double release_normal[3], release_offset;
+    int32_t release_type;
 } dem_motion;
 #define DEM_MAX_MOTIONS 4
 
@@ -46,7 +55,7 @@ enum { DEM_TOUCH = 1, DEM_BRIDGE = 2 };
 typedef struct dem_entry {
     int32_t j;
     int32_t flags;           /* DEM_TOUCH while overlapping, DEM_BRIDGE while a bridge exists */
-    double xi[3];            /* tangential spring of i relative to j (PHYSICS 2.3) */
+    double xi[3];            /* tangential spring of i relative to j (docs/theory.md §2.3) */
 } dem_entry;                 /* 32 bytes: two per cache line */
 
 /* What one entry contributes to one of its particles: force and torque. */
@@ -58,7 +67,7 @@ typedef struct dem_nlist {
     size_t n;                /* particles the list was built for */
     size_t *start;           /* n + 1: entries of i are start[i] .. start[i+1]-1 */
     dem_entry *e;
-    double *bv;              /* per entry: V_B of its liquid bridge (PHYSICS 2.4), 0 without */
+    double *bv;              /* per entry: V_B of its liquid bridge (docs/theory.md §2.4), 0 without */
     size_t ne, cap;
     size_t *tstart;          /* transposed: entries where particle j is the second one */
     size_t *tk;              /* entry of each transposed slot */
@@ -68,13 +77,26 @@ typedef struct dem_nlist {
     size_t builds;           /* how many times it was built */
 } dem_nlist;
 
-typedef struct dem_system {
+/* Hooks of a scenario into the time step (all optional).  edit runs before
+ * every neighbour-list build that dem_neighbours_update decides on: it may
+ * remove particles (dem_remove) and append new ones (dem_add_particle); the
+ * contact histories of the particles that stay carry over.  body_forces runs
+ * at the end of dem_forces and adds forces to the free particles (a fluid:
+ * drag, buoyancy). */
+typedef struct dem_system dem_system;
+typedef struct dem_hooks {
+    void *ctx;
+    int (*edit)(void *ctx, dem_system *s, mimas_error *err);
+    void (*body_forces)(void *ctx, dem_system *s);
+} dem_hooks;
+
+struct dem_system {
     /* particles (struct of arrays) */
     size_t n, cap;
     int64_t *id;
     int32_t *type;
     double *radius, *mass, *inertia;   /* inertia = (2/5) m R^2 */
-    double *liquid;                    /* liquid volume V_L carried (PHYSICS 2.4) */
+    double *liquid;                    /* liquid volume V_L carried (docs/theory.md §2.4) */
     double (*x)[3], (*v)[3], (*w)[3], (*f)[3], (*t)[3];
     double (*x_ref)[3];                /* positions when the list was built */
     int32_t (*image)[3];
@@ -105,16 +127,29 @@ typedef struct dem_system {
     int nmotions;
     int glued_interact;                /* glued particles interact with each other */
     dem_nlist nl;
-} dem_system;
+    int64_t last_id;                   /* ids are never reused: the next is last_id + 1 */
+    int64_t force_step;                /* the step whose positions dem_forces works on */
+    dem_hooks hooks;
+    /* the region a run stays in (the box of its frames), for dem_check_state */
+    int has_domain;
+    double domain_lo[3], domain_hi[3];
+};
 
 void dem_init(dem_system *s);
 void dem_free(dem_system *s);
 /* Makes room for n particles (arrays zeroed beyond the old size). */
 int dem_reserve(dem_system *s, size_t n, mimas_error *err);
-/* Adds a free particle of type, radius, density at x (returns its index). */
+/* Adds a free particle of type, radius, density at x (returns its index);
+ * its id is one more than the last id given. */
 size_t dem_add_particle(dem_system *s, int32_t type, double radius, double density,
                         const double x[3]);
+/* Removes the particles k with drop[k] != 0, keeping the order of the others,
+ * their wall histories and their entries in the neighbour list (renumbered). */
+int dem_remove(dem_system *s, const uint8_t *drop, mimas_error *err);
 int dem_add_wall(dem_system *s, const dem_wall *w, mimas_error *err);
+/* Duration of a collision of the linear law L for effective mass m_eff (with
+ * its clip: the time of repulsion), or 0 if the contact is overdamped. */
+double dem_law_contact_time(const dem_law *L, double m_eff);
 /* Sets laws, dt, skin, gravity, rotation, liquid from the scenario. */
 int dem_configure(dem_system *s, const sim_scenario *sc, mimas_error *err);
 
@@ -134,6 +169,13 @@ double dem_wall_geometry(const dem_wall *w, const double x[3], double radius, do
                          double c[3]);
 /* Velocity of the wall surface at point c. */
 void dem_wall_velocity(const dem_wall *w, const double c[3], double v[3]);
+
+/* Blow-up detection (blowup.c): MIMAS_EDATA naming the step, the particle
+ * and the likely cause when the state is no longer physical: a position,
+ * velocity or angular velocity that is not finite, a particle that moves
+ * more than its radius in one step, one that left the domain by more than
+ * the domain's size, an overlap larger than the smaller radius. */
+int dem_check_state(const dem_system *s, mimas_error *err);
 
 /* One velocity-Verlet step (integrate.c). */
 int dem_step(dem_system *s, mimas_error *err);

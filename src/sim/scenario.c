@@ -4,17 +4,19 @@
 
 #include "scenario.h"
 
+#include <errno.h>
 #include <ini.h>
 #include <stdarg.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 enum { K_REAL, K_INT, K_BOOL, K_CHOICE };
 /* which scenario types a key applies to */
 enum { S_RING = 1 << SIM_RINGSHEAR, S_BOX = 1 << SIM_BOX, S_PULL = 1 << SIM_PULLOFF,
-       S_ALL = S_RING | S_BOX | S_PULL };
+       S_TUBE = 1 << SIM_PLUGTUBE, S_ALL = S_RING | S_BOX | S_PULL | S_TUBE };
 /* range flags */
 enum { R_MIN_OPEN = 1, R_NO_MAX = 2 };
 
@@ -34,22 +36,27 @@ typedef struct key_desc {
 #define BIG 0, R_NO_MAX
 
 static const key_desc keys[] = {
-    {"scenario", "type", K_CHOICE, SC(type), 0, 0, 0, "ringshear|box|pulloff", "",
-     "the scenario: split-bottom ring shear cell, periodic box, liquid-bridge pull-off", S_ALL},
+    {"scenario", "type", K_CHOICE, SC(type), 0, 0, 0, "ringshear|box|pulloff|plugtube", "",
+     "the scenario: split-bottom ring shear cell, periodic box, liquid-bridge pull-off, "
+     "plug conveying in a tube", S_ALL},
     {"scenario", "seed", K_INT, SC(seed), 0, 2147483647.0, 0, NULL, "",
      "seed of the random numbers (sizes, insertion, velocities)", S_ALL},
-    {"run", "dt", K_REAL, SC(dt), 0, BIG | R_MIN_OPEN, NULL, "s", "time step", S_ALL},
+    {"run", "dt", K_REAL, SC(dt), 0, BIG, NULL, "s",
+     "time step (0: t_c/50 of the stiffest linear pair)", S_ALL},
     {"run", "dt_guard", K_BOOL, SC(dt_guard), 0, 1, 0, NULL, "",
-     "refuse dt > t_c/50 of the stiffest linear pair (PHYSICS 3)", S_ALL},
+     "refuse dt > t_c/50 of the stiffest linear pair (docs/theory.md §3)", S_ALL},
     {"run", "skin", K_REAL, SC(skin), 0, BIG | R_MIN_OPEN, NULL, "m",
      "Verlet-list skin; lists are rebuilt when a particle moved more than skin/2", S_ALL},
-    {"run", "gravity_x", K_REAL, SC(gravity[0]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, x", S_ALL},
-    {"run", "gravity_y", K_REAL, SC(gravity[1]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, y", S_ALL},
-    {"run", "gravity_z", K_REAL, SC(gravity[2]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, z", S_ALL},
+    {"run", "gravity_x", K_REAL, SC(gravity[0]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, x",
+     S_RING | S_BOX | S_PULL},
+    {"run", "gravity_y", K_REAL, SC(gravity[1]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, y",
+     S_RING | S_BOX | S_PULL},
+    {"run", "gravity_z", K_REAL, SC(gravity[2]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, z",
+     S_RING | S_BOX | S_PULL},
     {"run", "output_every", K_INT, SC(output_every), 1, 1e15, 0, NULL, "steps",
      "write a frame (particles, contacts, wall contacts) every this many steps", S_ALL},
     {"run", "checkpoint_every", K_INT, SC(checkpoint_every), 0, 1e15, 0, NULL, "steps",
-     "write the checkpoint for --resume every this many steps (0: with every frame)", S_ALL},
+     "write the checkpoint for --resume every this many steps (0: first frame, then at most once a minute)", S_ALL},
     {"run", "output_settle", K_BOOL, SC(output_settle), 0, 1, 0, NULL, "",
      "also write frames while the packing settles (ringshear)", S_RING},
     {"particles", "diameter", K_REAL, SC(diameter), 0, BIG | R_MIN_OPEN, NULL, "m",
@@ -59,15 +66,15 @@ static const key_desc keys[] = {
     {"particles", "density", K_REAL, SC(density), 0, BIG | R_MIN_OPEN, NULL, "kg m-3",
      "particle material density", S_ALL},
     {"particles", "liquid_content", K_REAL, SC(liquid_content), 0, 0.5, 0, NULL, "",
-     "liquid mass per particle mass D; > 0 switches liquid bridges on (PHYSICS 2.4)", S_ALL},
+     "liquid mass per particle mass D; > 0 switches liquid bridges on (docs/theory.md §2.4)", S_ALL},
     {"particles", "liquid_density", K_REAL, SC(liquid_density), 0, BIG | R_MIN_OPEN, NULL,
      "kg m-3", "density of the liquid", S_ALL},
     {"particles", "coarse_grain", K_REAL, SC(coarse_grain), 1, 1000, 0, NULL, "",
-     "coarse-grain factor alpha: radii x alpha, parameters scaled (PHYSICS 2.5)", S_ALL},
+     "coarse-grain factor alpha: radii x alpha, parameters scaled (docs/theory.md §2.5)", S_ALL},
     {"particles", "rotation", K_BOOL, SC(rotation), 0, 1, 0, NULL, "",
      "integrate the rotation of the particles (no: angular velocities stay 0)", S_ALL},
     {"contact", "model", K_CHOICE, CP(model), 0, 0, 0, "linear|hertz", "",
-     "normal and tangential law: linear spring-dashpot or Hertz-Mindlin (PHYSICS 2.1, 2.2)", S_ALL},
+     "normal and tangential law: linear spring-dashpot or Hertz-Mindlin (docs/theory.md §2.1, §2.2)", S_ALL},
     {"contact", "stiffness_normal", K_REAL, CP(k_n), 0, BIG, NULL, "N m-1", "k_n (linear)", S_ALL},
     {"contact", "stiffness_tangential", K_REAL, CP(k_t), 0, BIG, NULL, "N m-1",
      "k_t of the tangential history spring (linear)", S_ALL},
@@ -78,20 +85,23 @@ static const key_desc keys[] = {
     {"contact", "restitution", K_REAL, CP(restitution), 0, 1, 0, NULL, "",
      "coefficient of restitution e; 0: use damping_normal (linear); Hertz needs e > 0", S_ALL},
     {"contact", "normal_clip", K_BOOL, CP(normal_clip), 0, 1, 0, NULL, "",
-     "the normal force is never attractive: max(0, k delta - gamma v_n) (PHYSICS 2.1); with "
-     "it, restitution is reached at the end of the repulsion (004 eq. 3.13-3.14)", S_ALL},
+     "normal force never attractive: max(0, k delta - gamma v_n); restitution at the end of "
+     "the repulsion (Strauß 2005, eq. 3.13-3.14; docs/theory.md §2.1)", S_ALL},
     {"contact", "youngs_modulus", K_REAL, CP(youngs_modulus), 0, BIG, NULL, "Pa",
      "E (Hertz, JKR)", S_ALL},
     {"contact", "poisson", K_REAL, CP(poisson), 0, 0.5, 0, NULL, "", "Poisson ratio nu", S_ALL},
     {"contact", "friction", K_REAL, CP(friction), 0, BIG, NULL, "", "Coulomb friction mu", S_ALL},
     {"contact", "rolling_friction", K_REAL, CP(rolling_friction), 0, BIG, NULL, "m",
-     "rolling friction length mu_r (PHYSICS 2.3)", S_ALL},
+     "rolling friction length mu_r (docs/theory.md §2.3)", S_ALL},
     {"contact", "cohesion_energy", K_REAL, CP(cohesion_energy), 0, BIG, NULL, "J m-2",
-     "JKR-type cohesion: work of adhesion w = twice the surface energy (002 eq. 2.4, PHYSICS 2.4); needs youngs_modulus", S_ALL},
+     "JKR-type cohesion: work of adhesion w = twice the surface energy (Bierwisch 2009, eq. 2.4; docs/theory.md §2.4); needs youngs_modulus", S_ALL},
     {"contact", "surface_tension", K_REAL, CP(surface_tension), 0, BIG, NULL, "N m-1",
      "surface tension of the liquid bridges", S_ALL},
     {"contact", "contact_angle", K_REAL, CP(contact_angle), 0, 90, 0, NULL, "deg",
      "contact angle theta of the liquid bridges", S_ALL},
+    {"contact", "resting_overlap", K_REAL, CP(resting_overlap), 0, 0.5, 0, NULL, "",
+     "> 0: stiffness_normal = m g/(resting_overlap d): a particle resting on a wall overlaps "
+     "this fraction of d (linear; m, d of the particles)", S_ALL},
     {"ringshear", "r_in", K_REAL, SC(r_in), 0, BIG | R_MIN_OPEN, NULL, "m",
      "radius of the inner (static) cylinder", S_RING},
     {"ringshear", "r_split", K_REAL, SC(r_split), 0, BIG | R_MIN_OPEN, NULL, "m",
@@ -127,14 +137,66 @@ static const key_desc keys[] = {
      "separation speed of the two particles", S_PULL},
     {"pulloff", "distance", K_REAL, SC(pull_distance), 0, BIG | R_MIN_OPEN, NULL, "",
      "final gap in units of the particle radius", S_PULL},
+    {"plugtube", "orientation", K_CHOICE, SC(tube_orientation), 0, 0, 0, "vertical|horizontal",
+     "", "the tube runs along z; vertical: gravity along -z (against the flow), horizontal: "
+     "along -x", S_TUBE},
+    {"plugtube", "gravity", K_REAL, SC(tube_gravity), 0, 1e6, 0, NULL, "m s-2",
+     "magnitude of gravity", S_TUBE},
+    {"plugtube", "diameter", K_REAL, SC(tube_diameter), 0, BIG | R_MIN_OPEN, NULL, "m",
+     "inner diameter D_t of the tube", S_TUBE},
+    {"plugtube", "length", K_REAL, SC(tube_length), 0, BIG | R_MIN_OPEN, NULL, "m",
+     "length L_t of the tube (inlet z = 0, outlet z = L_t; grains are removed beyond it)",
+     S_TUBE},
+    {"plugtube", "mass_flow", K_REAL, SC(mass_flow), 0, BIG, NULL, "kg s-1",
+     "grain mass flow of the feed: the packed feed column is pushed in at the speed that "
+     "gives it (0: use feed_speed)", S_TUBE},
+    {"plugtube", "feed_speed", K_REAL, SC(feed_speed), 0, BIG, NULL, "m s-1",
+     "speed of the feed column (used when mass_flow = 0; both 0: no feed)", S_TUBE},
+    {"plugtube", "feed_porosity", K_REAL, SC(feed_porosity), 0.26, 0.95, 0, NULL, "",
+     "porosity of the packed feed column", S_TUBE},
+    {"plugtube", "fill_count", K_INT, SC(fill_count), 0, 1e9, 0, NULL, "",
+     "particles placed in the tube at the start, from the outlet end on (e.g. a settling "
+     "sphere)", S_TUBE},
+    {"plugtube", "time", K_REAL, SC(tube_time), 0, BIG, NULL, "s", "simulated time", S_TUBE},
+    {"gas", "model", K_CHOICE, SC(gas_model), 0, 0, 0, "pressure|fluid-at-rest|none", "",
+     "the gas: the gas-pressure model of plug conveying, a fluid at rest (drag laws, "
+     "buoyancy), or none", S_TUBE},
+    {"gas", "superficial_velocity", K_REAL, SC(gas_velocity), 0, BIG, NULL, "m s-1",
+     "superficial gas velocity v_s fed at the inlet and taken out at the outlet (pressure)",
+     S_TUBE},
+    {"gas", "pressure", K_REAL, SC(gas_pressure), 0, BIG | R_MIN_OPEN, NULL, "Pa",
+     "ambient pressure P0 (pressure)", S_TUBE},
+    {"gas", "viscosity", K_REAL, SC(gas_viscosity), 0, BIG | R_MIN_OPEN, NULL, "Pa s",
+     "dynamic viscosity eta0 of the gas or fluid", S_TUBE},
+    {"gas", "reynolds", K_REAL, SC(gas_reynolds), 0, 1e6, 0, NULL, "",
+     "particle Reynolds number of the effective viscosity eta = eta0 (1 + 0.1935 Re^0.6305) "
+     "(pressure; 0: eta = eta0)", S_TUBE},
+    {"gas", "cells_across", K_INT, SC(gas_cells_across), 1, 64, 0, NULL, "",
+     "gas cells across the tube, in x and in y (pressure)", S_TUBE},
+    {"gas", "cell_length", K_REAL, SC(gas_cell_length), 0, BIG | R_MIN_OPEN, NULL, "m",
+     "length of the gas cells along the tube (rounded to fit the tube; pressure)", S_TUBE},
+    {"gas", "theta", K_REAL, SC(gas_theta), 0.5, 1, 0, NULL, "",
+     "time weighting of the diffusion steps: 0.5 Crank-Nicolson, 1 implicit Euler "
+     "(pressure; docs/simulate.md)", S_TUBE},
+    {"gas", "every", K_INT, SC(gas_every), 1, 1e6, 0, NULL, "steps",
+     "advance the gas every this many steps (pressure; docs/simulate.md)", S_TUBE},
+    {"gas", "fluid_density", K_REAL, SC(fluid_density), 0, BIG, NULL, "kg m-3",
+     "density rho_f of the fluid at rest (fluid-at-rest)", S_TUBE},
+    {"gas", "drag_law", K_CHOICE, SC(drag_law), 0, 0, 0,
+     "stokes|schiller-naumann|haider-levenspiel", "", "drag coefficient (fluid-at-rest)",
+     S_TUBE},
+    {"gas", "wall_factor", K_CHOICE, SC(wall_factor), 0, 0, 0, "none|francis|ataide", "",
+     "correction of the drag for the tube wall (fluid-at-rest)", S_TUBE},
+    {"gas", "buoyancy", K_BOOL, SC(buoyancy), 0, 1, 0, NULL, "",
+     "buoyancy -rho_f V g (fluid-at-rest)", S_TUBE},
 };
 #define NKEYS (sizeof keys / sizeof keys[0])
 
-static const char *const type_names[] = {"ringshear", "box", "pulloff"};
+static const char *const type_names[] = {"ringshear", "box", "pulloff", "plugtube"};
 
 int sim_scenario_type(const char *name)
 {
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < SIM_SCENARIO_TYPES; k++)
         if (strcmp(name, type_names[k]) == 0)
             return k;
     return -1;
@@ -142,7 +204,7 @@ int sim_scenario_type(const char *name)
 
 static void contact_defaults(sim_contact_params *c)
 {
-    /* the ring shear cell of 000 (PHYSICS 7, 000 Table 4.2) */
+    /* the ring shear cell of Uhlig (2012, Table 4.2); docs/theory.md §7 */
     *c = (sim_contact_params){.model = SIM_LINEAR, .k_n = 110, .k_t = 12, .gamma_n = 2e-3,
                               .gamma_t = 0.5e-3, .restitution = 0, .normal_clip = 1,
                               .youngs_modulus = 0,
@@ -171,7 +233,7 @@ void sim_scenario_defaults(sim_scenario *s, int type)
     for (int a = 0; a < SIM_MAX_TYPES; a++)
         for (int b = 0; b < SIM_MAX_TYPES; b++)
             contact_defaults(&s->contact[a][b]);
-    /* the split-bottom cell of 000 (PHYSICS 7) */
+    /* the split-bottom cell of Uhlig (2012); docs/theory.md §7 */
     s->r_in = 0.0147;
     s->r_split = 0.085;
     s->r_out = 0.11;
@@ -189,6 +251,47 @@ void sim_scenario_defaults(sim_scenario *s, int type)
     s->box_time = 0.1;
     s->pull_speed = 1e-3;
     s->pull_distance = 0.5;
+    /* plug conveying: the standard set of Strauss (2005, App. A) */
+    s->tube_orientation = SIM_TUBE_VERTICAL;
+    s->tube_gravity = 9.81;
+    s->tube_diameter = 0.007;
+    s->tube_length = 0.525;
+    s->tube_time = 20;
+    s->mass_flow = 6.9167e-4;     /* 2.49 kg/h */
+    s->feed_speed = 0;
+    s->feed_porosity = 0.506;
+    s->gas_model = SIM_GAS_PRESSURE;
+    s->gas_velocity = 1;
+    s->gas_pressure = 101325;
+    s->gas_viscosity = 1.82e-5;   /* air; Re = 65 gives the effective 0.0672 cP */
+    s->gas_reynolds = 65;
+    s->gas_cells_across = 2;
+    s->gas_cell_length = 0.0035;
+    s->gas_every = 1;
+    s->gas_theta = 1;
+    s->fluid_density = 1.2;
+    s->drag_law = 1;              /* schiller-naumann */
+    s->wall_factor = 0;
+    s->buoyancy = 1;
+    if (type == SIM_PLUGTUBE) {
+        s->dt = 0;                /* t_c/50 */
+        s->diameter = 0.0014;
+        s->density = 937;
+        s->skin = 0.3 * 0.0014;
+        s->output_every = 2000;
+        for (int a = 0; a < SIM_MAX_TYPES; a++)
+            for (int b = 0; b < SIM_MAX_TYPES; b++) {
+                sim_contact_params *c = &s->contact[a][b];
+                c->friction = 0.5;
+                c->restitution = 0.5;
+                c->normal_clip = 1;
+                c->resting_overlap = 0.001;
+                /* Coulomb sliding regularised by viscous friction below the limit
+                 * (Strauss 2005, eq. 3.22): no tangential spring */
+                c->k_t = 0;
+                c->gamma_t = 1e-3;
+            }
+    }
 }
 
 /* ---- parsing ------------------------------------------------------------- */
@@ -205,7 +308,7 @@ typedef struct parse_ctx {
     override *ov;
     size_t nov;
     int only_type;              /* first pass: look for [scenario] type only */
-    int found_type;
+    int found_type, has_type;
     char msg[MIMAS_ERROR_MSG_MAX - 64];
     int failed;
 } parse_ctx;
@@ -320,9 +423,10 @@ static int handler(void *user, const char *section, const char *name, const char
         if (strcmp(section, "scenario") == 0 && strcmp(name, "type") == 0) {
             int t = sim_scenario_type(value);
             if (t < 0)
-                return fail(c, "[scenario] type must be ringshear, box or pulloff, not '%s'",
-                            value);
+                return fail(c, "[scenario] type must be ringshear, box, pulloff or plugtube, "
+                               "not '%s'", value);
             c->found_type = t;
+            c->has_type = 1;
         }
         return 1;
     }
@@ -370,7 +474,7 @@ static int handler(void *user, const char *section, const char *name, const char
     } else {
         override *grown = realloc(c->ov, (c->nov + 1) * sizeof *grown);
         if (!grown)
-            return fail(c, "out of memory");
+            return fail(c, "out of memory for the [contact A-B] overrides");
         c->ov = grown;
         c->ov[c->nov++] = (override){a, b, k, v};
     }
@@ -413,6 +517,10 @@ static int load_any(sim_scenario *s, const char *path, const char *text, const c
     int line = run_parse(&c, path, text);
     if (line < 0)
         return mimas_error_set(err, MIMAS_EIO, "%s: cannot read the scenario file", name);
+    if (line == 0 && !c.has_type)
+        return mimas_error_set(err, MIMAS_EDATA, "%s: no [scenario] type (ringshear, box or "
+                               "pulloff): not a scenario file (see mimas simulate "
+                               "--print-defaults)", name);
     if (line == 0) {
         /* second pass: the defaults of the scenario type, then the file */
         sim_scenario_defaults(s, c.found_type);
@@ -439,6 +547,12 @@ static int load_any(sim_scenario *s, const char *path, const char *text, const c
 
 int sim_scenario_load(sim_scenario *s, const char *path, mimas_error *err)
 {
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return mimas_error_set(err, MIMAS_EDATA, "%s: cannot open the scenario file: %s", path,
+                               strerror(errno));
+    if (S_ISDIR(st.st_mode))
+        return mimas_error_set(err, MIMAS_EDATA, "%s: is a directory, not a scenario file", path);
     return load_any(s, path, NULL, path, err);
 }
 
@@ -448,8 +562,39 @@ int sim_scenario_load_string(sim_scenario *s, const char *text, const char *name
     return load_any(s, NULL, text, name, err);
 }
 
+/* The most steps a run may have (and still count them in int64 with room). */
+#define MAX_STEPS 1e15
+
+/* A simulated time in steps of dt: refuses a count that would overflow (a
+ * time of 1e300 s) or that no machine runs. */
+static int check_steps(const char *name, const char *section, const char *key, double time,
+                       double dt, mimas_error *err)
+{
+    if (dt == 0)
+        return MIMAS_OK; /* dt = 0: t_c/50, checked once it is known (sim_setup) */
+    double steps = time / dt;
+    if (!(steps <= MAX_STEPS))
+        return mimas_error_set(err, MIMAS_EDATA, "%s: [%s] %s = %g s is %g steps of dt = %g s, "
+                               "more than %g", name, section, key, time, steps, dt, MAX_STEPS);
+    return MIMAS_OK;
+}
+
 int sim_scenario_check(const sim_scenario *s, const char *name, mimas_error *err)
 {
+    int rc = MIMAS_OK;
+    if (s->type == SIM_RINGSHEAR)
+        rc = check_steps(name, "ringshear", "settle_time + shear_time",
+                         s->settle_time + s->shear_time, s->dt, err);
+    else if (s->type == SIM_BOX)
+        rc = check_steps(name, "box", "time", s->box_time, s->dt, err);
+    else if (s->type == SIM_PLUGTUBE)
+        rc = check_steps(name, "plugtube", "time", s->tube_time, s->dt, err);
+    else
+        rc = check_steps(name, "pulloff", "distance x radius / speed",
+                         s->pull_distance * s->diameter * s->coarse_grain / 2 / s->pull_speed,
+                         s->dt, err);
+    if (rc)
+        return rc;
     if (s->type == SIM_RINGSHEAR) {
         if (!(s->r_in < s->r_split && s->r_split < s->r_out))
             return mimas_error_set(err, MIMAS_EDATA, "%s: [ringshear] needs r_in < r_split < "
@@ -459,6 +604,18 @@ int sim_scenario_check(const sim_scenario *s, const char *name, mimas_error *err
             return mimas_error_set(err, MIMAS_EDATA, "%s: [ringshear] the gap r_out - r_in is "
                                    "narrower than three particle diameters", name);
     }
+    if (s->type == SIM_PLUGTUBE) {
+        double d = s->diameter * s->coarse_grain;
+        if (s->mass_flow > 0 && s->feed_speed > 0)
+            return mimas_error_set(err, MIMAS_EDATA, "%s: [plugtube] set either mass_flow or "
+                                   "feed_speed (the other 0)", name);
+        if (s->tube_diameter < 2.5 * d)
+            return mimas_error_set(err, MIMAS_EDATA, "%s: [plugtube] the tube diameter must be "
+                                   "at least 2.5 particle diameters", name);
+        if (s->tube_length < 10 * d)
+            return mimas_error_set(err, MIMAS_EDATA, "%s: [plugtube] the tube must be at least "
+                                   "10 particle diameters long", name);
+    }
     for (int a = 0; a < SIM_MAX_TYPES; a++)
         for (int b = a; b < SIM_MAX_TYPES; b++) {
             const sim_contact_params *c = &s->contact[a][b];
@@ -467,8 +624,8 @@ int sim_scenario_check(const sim_scenario *s, const char *name, mimas_error *err
                 what = "model = hertz needs youngs_modulus > 0";
             else if (c->model == SIM_HERTZ && !(c->restitution > 0))
                 what = "model = hertz needs restitution > 0";
-            else if (c->model == SIM_LINEAR && !(c->k_n > 0))
-                what = "model = linear needs stiffness_normal > 0";
+            else if (c->model == SIM_LINEAR && !(c->k_n > 0) && !(c->resting_overlap > 0))
+                what = "model = linear needs stiffness_normal > 0 (or resting_overlap > 0)";
             else if (c->model == SIM_LINEAR && c->restitution > 0 && c->normal_clip &&
                      c->restitution <= exp(-2))
                 what = "with normal_clip = yes no damping gives a restitution below exp(-2) = "
@@ -534,7 +691,7 @@ void sim_scenario_print_doc(FILE *out)
         const key_desc *k = &keys[m];
         fprintf(out, "| %s | %s | %s | ", k->section, k->name, k->unit);
         const char *sep = "";
-        for (int t = 0; t < 3; t++)
+        for (int t = 0; t < SIM_SCENARIO_TYPES; t++)
             if (k->scenarios & (1 << t)) {
                 fprintf(out, "%s%s", sep, type_names[t]);
                 sep = ", ";
