@@ -35,50 +35,47 @@ extern "C" size_t mimas_format_double(double v, char *buf)
     char *o = buf;
     if (*p == '-')
         *o++ = *p++;
-    // digits: p[0], then p[2..] up to 'e' when there is a '.'
-    char dig[20];
-    int nd = 0;
-    dig[nd++] = *p++;
-    if (*p == '.')
-        for (p++; *p != 'e'; p++)
-            dig[nd++] = *p;
-    p++; // 'e'
-    int eneg = *p == '-';
-    int e = 0;
-    for (p++; p < end; p++)
-        e = 10 * e + (*p - '0');
-    if (eneg)
+    // "d.ddde+XX": the exponent (a sign and 2 or 3 digits) ends the text; the digits are
+    // p[0] and, when there is a '.', p[2] .. the 'e'
+    const char *ep = end[-4] == 'e' ? end - 4 : end - 5;
+    int e = ep[2] - '0';
+    for (const char *q = ep + 3; q < end; q++)
+        e = 10 * e + (*q - '0');
+    if (ep[1] == '-')
         e = -e;
+    const char *frac = p + 2; // the digits after the first
+    int nf = ep - p > 1 ? (int)(ep - frac) : 0, nd = nf + 1;
     if (e >= -4 && e < 17) {
         int point = e + 1; // digits before the decimal point
         if (point <= 0) {
-            *o++ = '0';
-            *o++ = '.';
-            for (int k = 0; k < -point; k++)
-                *o++ = '0';
-            std::memcpy(o, dig, (size_t)nd);
-            o += nd;
+            std::memcpy(o, "0.0000", (size_t)(2 - point));
+            o += 2 - point;
+            *o++ = p[0];
+            std::memcpy(o, frac, (size_t)nf);
+            o += nf;
         } else if (point >= nd) {
-            std::memcpy(o, dig, (size_t)nd);
-            o += nd;
+            *o++ = p[0];
+            std::memcpy(o, frac, (size_t)nf);
+            o += nf;
             for (int k = nd; k < point; k++)
                 *o++ = '0';
         } else {
-            std::memcpy(o, dig, (size_t)point);
-            o += point;
+            *o++ = p[0];
+            std::memcpy(o, frac, (size_t)(point - 1));
+            o += point - 1;
             *o++ = '.';
-            std::memcpy(o, dig + point, (size_t)(nd - point));
+            std::memcpy(o, frac + point - 1, (size_t)(nd - point));
             o += nd - point;
         }
     } else {
-        *o++ = dig[0];
-        if (nd > 1) {
+        *o++ = p[0];
+        if (nf > 0) {
             *o++ = '.';
-            std::memcpy(o, dig + 1, (size_t)(nd - 1));
-            o += nd - 1;
+            std::memcpy(o, frac, (size_t)nf);
+            o += nf;
         }
         *o++ = 'e';
-        *o++ = eneg ? '-' : '+';
+        *o++ = e < 0 ? '-' : '+';
         int a = e < 0 ? -e : e;
         if (a >= 100)
             *o++ = (char)('0' + a / 100);
