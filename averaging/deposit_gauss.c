@@ -221,7 +221,7 @@ enum { SEG_MAXNODE = 64 };
 /* Four doubles in one register where the compiler has vector types (GCC, Clang): the
  * row's sums four cells at a time (unaligned loads and stores). */
 #if defined(__GNUC__)
-typedef double v4d __attribute__((vector_size(32), aligned(8)));
+typedef double v4d __attribute__((vector_size(32), aligned(8), may_alias));
 #endif
 
 /* vrow[c] = sum_k f[k] ex[k n + c] for the cells c of [c0, c1) (c1 - c0 a multiple of 4) */
