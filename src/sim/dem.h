@@ -104,6 +104,8 @@ struct dem_system {
     double (*anchor)[3];               /* glued: position at angle 0 and shift 0 */
     int32_t *bridges;                  /* bridges of each particle, this step */
     uint8_t *wall_near;                /* bit w: within reach of wall w until the next list build */
+    double (*held)[3];                 /* a force a scenario holds between its updates (the gas
+                                        * drag between gas steps), N; 0 for a new particle */
     /* walls; wall-contact history and forces, n x nwalls */
     dem_wall walls[DEM_MAX_WALLS];
     int nwalls;

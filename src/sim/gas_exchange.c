@@ -10,6 +10,7 @@
 #include "gas.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* the two nodes along one direction and their weights */
@@ -45,13 +46,27 @@ static tent1 face_weights(double x, double lo, double h, size_t n)
     return r;
 }
 
-/* the weights of a point for the cell grid (face = -1) or the face grid
- * normal to direction face */
-static void weights3(const sim_gas *g, const double x[3], int face, tent1 t[3])
+/* The 1-d weights of a point, once per direction: about the cell centres
+ * and about the faces.  The weights of the cell grid take the centre
+ * weights in all three directions, those of the face grid normal to d the
+ * face weights along d. */
+typedef struct sim_gas_tents {
+    tent1 centre[3], face[3];
+} sim_gas_tents;
+
+static void tents_of(const sim_gas *g, const double x[3], sim_gas_tents *w)
+{
+    for (int d = 0; d < 3; d++) {
+        w->centre[d] = centre_weights(x[d], g->lo[d], g->h[d], g->n[d]);
+        w->face[d] = face_weights(x[d], g->lo[d], g->h[d], g->n[d]);
+    }
+}
+
+/* the weights for the cell grid (face = -1) or the face grid normal to face */
+static void grid_tents(const sim_gas_tents *w, int face, tent1 t[3])
 {
     for (int d = 0; d < 3; d++)
-        t[d] = d == face ? face_weights(x[d], g->lo[d], g->h[d], g->n[d])
-                         : centre_weights(x[d], g->lo[d], g->h[d], g->n[d]);
+        t[d] = d == face ? w->face[d] : w->centre[d];
 }
 
 /* the 8 nodes (in a grid of dimensions m) and their weights */
@@ -66,9 +81,10 @@ static void nodes8(const tent1 t[3], const size_t m[3], size_t node[8], double w
             }
 }
 
-static int inside(const sim_gas *g, const dem_system *s, size_t k)
+/* on the grid: start <= z < length */
+static int on_grid(const sim_gas *g, const dem_system *s, size_t k)
 {
-    return s->glued[k] < 0 && s->x[k][2] >= 0 && s->x[k][2] < g->p.length;
+    return s->x[k][2] >= g->p.start && s->x[k][2] < g->p.length;
 }
 
 void sim_gas_deposit(sim_gas *g, const dem_system *s)
@@ -80,22 +96,38 @@ void sim_gas_deposit(sim_gas *g, const dem_system *s)
         memset(g->f[d].phi, 0, nf * sizeof *g->f[d].phi);   /* sum of V w */
         memset(g->f[d].u, 0, nf * sizeof *g->f[d].u);       /* sum of V w v_d */
     }
+    /* the weights are kept for sim_gas_drag_held at the same positions (when
+     * the cache cannot grow, that function computes them again: the same
+     * numbers) */
+    if (s->n > g->tents_cap) {
+        void *c = realloc(g->tents, s->n * sizeof(sim_gas_tents));
+        if (c) {
+            g->tents = c;
+            g->tents_cap = s->n;
+        }
+    }
+    sim_gas_tents *cache = s->n <= g->tents_cap ? g->tents : NULL;
+    g->tents_n = cache ? s->n : 0;
     /* serial: a fixed summation order, the same for any number of threads */
     for (size_t k = 0; k < s->n; k++) {
-        if (!inside(g, s, k))
+        if (!on_grid(g, s, k))
             continue;
         double r = s->radius[k], V = 4.0 / 3.0 * M_PI * r * r * r;
+        sim_gas_tents wk;
+        tents_of(g, s->x[k], &wk);
+        if (cache)
+            cache[k] = wk;
         tent1 t[3];
         size_t q[8];
         double w[8];
-        weights3(g, s->x[k], -1, t);
+        grid_tents(&wk, -1, t);
         nodes8(t, g->n, q, w);
         for (int a = 0; a < 8; a++)
             g->solid[q[a]] += V * w[a];
         for (int d = 0; d < 3; d++) {
             sim_gas_faces *f = &g->f[d];
             double vd = s->v[k][d];
-            weights3(g, s->x[k], d, t);
+            grid_tents(&wk, d, t);
             nodes8(t, f->m, q, w);
             for (int a = 0; a < 8; a++) {
                 f->phi[q[a]] += V * w[a];
@@ -118,30 +150,63 @@ void sim_gas_deposit(sim_gas *g, const dem_system *s)
     sim_gas_update_permeability(g);
 }
 
+/* the drag -V grad P/(1 - phi) on a sphere of radius r with weights w */
+static void drag_of(const sim_gas *g, const sim_gas_tents *wk, double r, double out[3])
+{
+    tent1 t[3];
+    size_t q[8];
+    double w[8], phi = 0, grad[3] = {0, 0, 0};
+    grid_tents(wk, -1, t);
+    nodes8(t, g->n, q, w);
+    for (int a = 0; a < 8; a++)
+        phi += w[a] * g->porosity[q[a]];
+    for (int d = 0; d < 3; d++) {
+        const sim_gas_faces *f = &g->f[d];
+        grid_tents(wk, d, t);
+        nodes8(t, f->m, q, w);
+        for (int a = 0; a < 8; a++)
+            grad[d] += w[a] * f->grad[q[a]];
+    }
+    /* the solid fraction carrying the pressure drop; at least 1 % */
+    double solid = fmax(1 - phi, 0.01);
+    double c = -4.0 / 3.0 * M_PI * r * r * r / solid;
+    for (int d = 0; d < 3; d++)
+        out[d] = c * grad[d];
+}
+
+static int drag_applies(const sim_gas *g, const dem_system *s, size_t k)
+{
+    return s->glued[k] < 0 && on_grid(g, s, k);   /* the feed column moves as it is pushed */
+}
+
 void sim_gas_drag(const sim_gas *g, dem_system *s)
 {
 #pragma omp parallel for schedule(static)
     for (size_t k = 0; k < s->n; k++) {
-        if (!inside(g, s, k))
+        if (!drag_applies(g, s, k))
             continue;
-        tent1 t[3];
-        size_t q[8];
-        double w[8], phi = 0, grad[3] = {0, 0, 0};
-        weights3(g, s->x[k], -1, t);
-        nodes8(t, g->n, q, w);
-        for (int a = 0; a < 8; a++)
-            phi += w[a] * g->porosity[q[a]];
-        for (int d = 0; d < 3; d++) {
-            const sim_gas_faces *f = &g->f[d];
-            weights3(g, s->x[k], d, t);
-            nodes8(t, f->m, q, w);
-            for (int a = 0; a < 8; a++)
-                grad[d] += w[a] * f->grad[q[a]];
-        }
-        /* the solid fraction carrying the pressure drop; at least 1 % */
-        double solid = fmax(1 - phi, 0.01), r = s->radius[k];
-        double c = -4.0 / 3.0 * M_PI * r * r * r / solid;
+        sim_gas_tents wk;
+        double F[3];
+        tents_of(g, s->x[k], &wk);
+        drag_of(g, &wk, s->radius[k], F);
         for (int d = 0; d < 3; d++)
-            s->f[k][d] += c * grad[d];
+            s->f[k][d] += F[d];
+    }
+}
+
+void sim_gas_drag_held(const sim_gas *g, const dem_system *s, double (*held)[3])
+{
+    const sim_gas_tents *cache = s->n <= g->tents_n ? g->tents : NULL;
+#pragma omp parallel for schedule(static)
+    for (size_t k = 0; k < s->n; k++) {
+        held[k][0] = held[k][1] = held[k][2] = 0;
+        if (!drag_applies(g, s, k))
+            continue;
+        sim_gas_tents wk;
+        if (cache)
+            wk = cache[k];
+        else
+            tents_of(g, s->x[k], &wk);
+        drag_of(g, &wk, s->radius[k], held[k]);
     }
 }
