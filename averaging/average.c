@@ -265,30 +265,13 @@ static int deposit_branch(const mimas_deposit *dp, const mimas_grid *g, double *
 
 static int selected(const mimas_average_options *o, const mimas_particles *p, size_t k)
 {
-    if (!o->ntypes)
-        return 1;
-    int32_t t = (p->present & MIMAS_P_TYPE) ? p->type[k] : 1;
-    int listed = 0;
-    for (size_t m = 0; m < o->ntypes; m++)
-        listed |= o->types[m] == t;
-    return o->exclude ? !listed : listed;
+    return mimas_particle_selected(p, k, o->types, o->ntypes, o->exclude);
 }
 
 static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
 {
     const mimas_particles *p = &f->particles;
-    int rc = mimas_table_require(p, &mimas_particles_desc,
-                                 MIMAS_P_RADIUS | MIMAS_P_MASS | MIMAS_P_VEL, err);
-    if (rc) {
-        if (!(p->present & MIMAS_P_MASS))
-            mimas_error_prefix(err, "%s", "give the particle density with --density");
-        return rc;
-    }
-    if (f->has_contacts)
-        rc = mimas_table_require(&f->contacts, &mimas_contacts_desc, MIMAS_C_FORCE, err);
-    if (!rc && f->has_walls)
-        rc = mimas_table_require(&f->walls, &mimas_walls_desc, MIMAS_W_FORCE | MIMAS_W_POINT,
-                                 err);
+    int rc = mimas_frame_require_dynamics(f, err);
     if (rc)
         return rc;
     if (a->opt.weight.voronoi) {

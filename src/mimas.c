@@ -20,6 +20,8 @@ static const cli_command *const commands[] = {
     &cmd_rheology,
     &cmd_xdmf,
     &cmd_disperse,
+    &cmd_plugs,
+    &cmd_radial,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 
