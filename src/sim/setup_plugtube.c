@@ -113,8 +113,8 @@ static void tube_forces(void *ctx, dem_system *s)
     if (t->model != SIM_GAS_PRESSURE)
         return;
     /* every gas_every steps the gas advances to the time of the positions the
-     * forces are for, and the drag on each grain is computed and held until
-     * the next gas step (docs/simulate.md: why that is stable); the first
+     * forces are for, and the drag on each grain is computed and held (dem_forces
+     * adds it every step) until the next gas step (docs/simulate.md: why that is stable); the first
      * forces of a run take the drag of the field set up */
     if (s->force_step % t->gas_every == 0) {
         sim_gas_deposit(&t->gas, s);
@@ -122,9 +122,6 @@ static void tube_forces(void *ctx, dem_system *s)
             sim_gas_step(&t->gas, (double)t->gas_every * t->dt, t->feeding ? t->feed_speed : 0);
         sim_gas_drag_held(&t->gas, s, s->held);
     }
-    for (size_t k = 0; k < s->n; k++)
-        for (int d = 0; d < 3; d++)
-            s->f[k][d] += s->held[k][d];
 }
 
 /* fill_count grains on a jittered lattice from the outlet end down */
