@@ -267,7 +267,7 @@ void sim_scenario_defaults(sim_scenario *s, int type)
     s->gas_reynolds = 65;
     s->gas_cells_across = 1;
     s->gas_cell_length = 0.0035;
-    s->gas_every = 1;
+    s->gas_every = 10;
     s->gas_theta = 1;
     s->fluid_density = 1.2;
     s->drag_law = 1;              /* schiller-naumann */
