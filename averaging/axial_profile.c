@@ -97,6 +97,12 @@ const double *mimas_axial_row(const mimas_axial *a, size_t k)
     return &a->field[k * MIMAS_AX_NFIELDS];
 }
 
+void mimas_axial_load(mimas_axial *ax, const double *values, const mimas_axial_totals *t)
+{
+    memcpy(ax->field, values, ax->o.slices.n * MIMAS_AX_NFIELDS * sizeof *ax->field);
+    ax->totals = *t;
+}
+
 mimas_axial_totals mimas_axial_frame_totals(const mimas_axial *a)
 {
     return a->totals;
@@ -303,7 +309,7 @@ static int add_particles(mimas_axial *a, const mimas_frame *f, mimas_error *err)
             continue;
         double s, r, v[3], R = p->radius[i];
         mimas_tube_point(g, p->pos[i], p->vel[i], &s, &r, v);
-        if (a->o.check_inside && !(r + 0.5 * R <= g->radius))
+        if (a->o.check_inside && r > g->radius) /* mimas_tube_check_particle's test */
             return mimas_tube_check_particle(g, f, i, err);
         add_particle(a, p, i, s, v);
         if (s >= lo && s <= hi) {

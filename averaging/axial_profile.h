@@ -92,6 +92,10 @@ typedef struct mimas_axial_totals {
     double pressure_drop;
 } mimas_axial_totals;
 mimas_axial_totals mimas_axial_frame_totals(const mimas_axial *ax);
+/* Sets the fields (slices x MIMAS_AX_NFIELDS values, as mimas_axial_row
+ * gives them) and whole-frame figures of a frame computed elsewhere with the
+ * same options (another MPI rank); the sums are left as they were. */
+void mimas_axial_load(mimas_axial *ax, const double *values, const mimas_axial_totals *t);
 void mimas_axial_free(mimas_axial *ax);
 
 #ifdef __cplusplus

@@ -10,12 +10,14 @@
 #include <unistd.h>
 
 #include "h5util.h"
+#include "tmpfiles.h"
 
 /* ---- HDF5 file under a temporary name ---- */
 
 struct mimas_h5out {
     hid_t file;
     h5_quiet quiet;
+    int slot; /* in the temporary-file registry */
     char path[4096], tmp[4200];
 };
 
@@ -29,11 +31,13 @@ int mimas_h5out_open(mimas_h5out **op, const char *path, mimas_error *err)
         return mimas_error_set(err, MIMAS_EUSAGE, "%.64s...: path too long", path);
     }
     snprintf(o->path, sizeof o->path, "%s", path);
-    snprintf(o->tmp, sizeof o->tmp, "%s.tmp%ld", path, (long)getpid());
+    mimas_tmpfile_name(o->tmp, sizeof o->tmp, path);
+    o->slot = mimas_tmpfile_add(o->tmp);
     h5_quiet_begin(&o->quiet);
     o->file = H5Fcreate(o->tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     if (o->file < 0) {
         h5_quiet_end(&o->quiet);
+        mimas_tmpfile_forget(o->slot);
         free(o);
         return mimas_error_set(err, MIMAS_EIO, "%s: cannot create the file", path);
     }
@@ -78,6 +82,7 @@ void mimas_h5out_abort(mimas_h5out *o)
     if (o->file >= 0)
         H5Fclose(o->file);
     remove(o->tmp); /* gone already after a rename */
+    mimas_tmpfile_forget(o->slot);
     h5_quiet_end(&o->quiet);
     free(o);
 }
@@ -87,7 +92,6 @@ void mimas_h5out_abort(mimas_h5out *o)
 #define OT_BLOCK 256 /* HDF5 rows buffered per column */
 
 struct mimas_otable {
-    FILE *tsv;
     const mimas_ocolumn *cols;
     size_t ncols;
     hid_t *ds;        /* per column, or NULL without HDF5 */
@@ -100,11 +104,11 @@ struct mimas_otable {
     int failed;
 };
 
-int mimas_otable_open(mimas_otable **tp, FILE *tsv, mimas_h5out *h5, const char *name,
+int mimas_otable_open(mimas_otable **tp, mimas_h5out *h5, const char *name,
                       const mimas_ocolumn *cols, size_t ncols, mimas_error *err)
 {
-    hid_t group = -1;
-    if (h5 && (group = h5out_group(h5, name)) < 0)
+    hid_t group = h5out_group(h5, name);
+    if (group < 0)
         return mimas_error_set(err, MIMAS_EIO, "%s: cannot write the group %s", h5->path, name);
     mimas_otable *t = calloc(1, sizeof *t);
     if (!t) {
@@ -112,16 +116,10 @@ int mimas_otable_open(mimas_otable **tp, FILE *tsv, mimas_h5out *h5, const char 
             H5Gclose(group);
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
     }
-    t->tsv = tsv;
     t->cols = cols;
     t->ncols = ncols;
-    if (tsv) {
-        for (size_t c = 0; c < ncols; c++)
-            fprintf(tsv, "%s%s", c ? "\t" : "", cols[c].name);
-        fputc('\n', tsv);
-    }
     t->group = group;
-    if (group >= 0) {
+    {
         t->ds = malloc(ncols * sizeof *t->ds);
         t->num = malloc(OT_BLOCK * ncols * sizeof *t->num);
         t->txt = calloc(OT_BLOCK * ncols, sizeof *t->txt);
@@ -193,32 +191,9 @@ static int flush(mimas_otable *t)
     return rc;
 }
 
-static void print_number(FILE *fp, double v)
-{
-    if (isnan(v))
-        fputs("nan", fp);
-    else
-        fprintf(fp, "%.17g", v);
-}
-
 int mimas_otable_row(mimas_otable *t, const double *v, const char *const *text,
                      mimas_error *err)
 {
-    if (t->tsv) {
-        for (size_t c = 0; c < t->ncols; c++) {
-            if (c)
-                fputc('\t', t->tsv);
-            if (t->cols[c].text)
-                fputs(text[c], t->tsv);
-            else
-                print_number(t->tsv, v[c]);
-        }
-        fputc('\n', t->tsv);
-        if (ferror(t->tsv))
-            return mimas_error_set(err, MIMAS_EIO, "cannot write the table");
-    }
-    if (!t->ds)
-        return MIMAS_OK;
     for (size_t c = 0; c < t->ncols; c++) {
         size_t q = t->buffered * t->ncols + c;
         if (t->cols[c].text) {

@@ -1,5 +1,6 @@
 /* The outputs of the tube analyses (mimas plugs, mimas radial): tables as
- * TSV and/or as HDF5 groups of column datasets written row by row, HDF5
+ * HDF5 groups of column datasets written row by row (their text form is
+ * the commands' shared table writer, src/cli_table.h), HDF5
  * files that appear only when complete, and the space-time fields of the
  * axial profiles (slice x frame, with an XDMF sidecar for ParaView). */
 #ifndef MIMAS_PLUGS_OUTPUT_H
@@ -24,18 +25,19 @@ int mimas_h5out_commit(mimas_h5out *o, const char *provenance, mimas_error *err)
 /* Closes and removes the unfinished file; frees o (NULL is fine). */
 void mimas_h5out_abort(mimas_h5out *o);
 
-/* ---- a table: TSV with a header line, and/or an HDF5 group ---- */
+/* ---- a table as an HDF5 group ---- */
 typedef struct mimas_ocolumn {
     const char *name;
     const char *unit;      /* "1" for dimensionless, "" for none */
     const char *meaning;
     int text;              /* a string column (else numbers) */
+    int integer;           /* a number column of whole numbers (printed without exponent) */
 } mimas_ocolumn;
 typedef struct mimas_otable mimas_otable;
-/* tsv may be NULL (no TSV), h5 NULL (no HDF5; else the table is the group
- * of that name, one dataset per column).  The columns must outlive the
- * table.  Writes the TSV header. */
-int mimas_otable_open(mimas_otable **t, FILE *tsv, mimas_h5out *h5, const char *group,
+/* The table is the group of that name in h5, one dataset per column (with
+ * its unit and definition as attributes).  The columns must outlive the
+ * table. */
+int mimas_otable_open(mimas_otable **t, mimas_h5out *h5, const char *group,
                       const mimas_ocolumn *cols, size_t ncols, mimas_error *err);
 /* One row: v[c] for number columns (NaN prints "nan"), text[c] for text
  * columns (text may be NULL without text columns). */

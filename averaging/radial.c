@@ -156,8 +156,8 @@ static void add_particle(mimas_radial *r, const double l[3], double a, double m,
     }
 }
 
-int mimas_radial_sample(mimas_radial *r, const mimas_frame *f, const double *planes, size_t n,
-                        mimas_error *err)
+int mimas_radial_probe(mimas_radial *r, const mimas_frame *f, const double *planes, size_t n,
+                       mimas_error *err)
 {
     const mimas_particles *p = &f->particles;
     int rc = mimas_frame_require_dynamics(f, err);
@@ -200,12 +200,30 @@ int mimas_radial_sample(mimas_radial *r, const mimas_frame *f, const double *pla
         }
         L[MIMAS_RAD_T] = S[R_N] > 0 ? tsum / (ncomp * S[R_N]) : NAN;
         L[MIMAS_RAD_EROT] = S[R_N] > 0 && omega ? S[R_EROT] / S[R_N] : NAN;
-        for (int q = 0; q < MIMAS_RAD_NFIELDS; q++)
-            if (!isnan(L[q]))
-                mimas_sample_mean_add(&r->mean[k * MIMAS_RAD_NFIELDS + (size_t)q], L[q]);
     }
-    r->samples++;
     return MIMAS_OK;
+}
+
+const double *mimas_radial_values(const mimas_radial *r)
+{
+    return r->last;
+}
+
+void mimas_radial_add(mimas_radial *r, const double *values)
+{
+    for (size_t k = 0; k < r->nr * MIMAS_RAD_NFIELDS; k++)
+        if (!isnan(values[k]))
+            mimas_sample_mean_add(&r->mean[k], values[k]);
+    r->samples++;
+}
+
+int mimas_radial_sample(mimas_radial *r, const mimas_frame *f, const double *planes, size_t n,
+                        mimas_error *err)
+{
+    int rc = mimas_radial_probe(r, f, planes, n, err);
+    if (!rc)
+        mimas_radial_add(r, r->last);
+    return rc;
 }
 
 double mimas_radial_last(const mimas_radial *r, size_t k, int field)

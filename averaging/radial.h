@@ -50,6 +50,14 @@ size_t mimas_radial_probes(const mimas_radial *r, size_t k);
  * frame f; its per-radius values go into the averages. */
 int mimas_radial_sample(mimas_radial *r, const mimas_frame *f, const double *planes, size_t n,
                         mimas_error *err);
+/* The same in two steps: the sample's per-radius values (nr x
+ * MIMAS_RAD_NFIELDS, radius-major; mimas_radial_values, valid until the
+ * next probe), then their addition to the averages (values from this or
+ * another mimas_radial of the same options, e.g. on another MPI rank). */
+int mimas_radial_probe(mimas_radial *r, const mimas_frame *f, const double *planes, size_t n,
+                       mimas_error *err);
+const double *mimas_radial_values(const mimas_radial *r);
+void mimas_radial_add(mimas_radial *r, const double *values);
 /* The last sample's value of field at radius k. */
 double mimas_radial_last(const mimas_radial *r, size_t k, int field);
 /* The average over samples, its standard error and the sample count. */

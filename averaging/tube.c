@@ -155,3 +155,13 @@ int mimas_tube_extent(const mimas_tube_geom *g, const mimas_frame *f, const int3
     *diameter = dsum / (double)n;
     return MIMAS_OK;
 }
+
+int mimas_tube_setup_from(mimas_tube_setup *s, const char *axis_spec, double radius,
+                          const mimas_frame *f, const int32_t *types, size_t ntypes, int exclude,
+                          mimas_error *err)
+{
+    int rc = mimas_tube_geom_resolve(&s->geom, axis_spec, radius, &f->tube, err);
+    return rc ? rc
+              : mimas_tube_extent(&s->geom, f, types, ntypes, exclude, &s->s_min, &s->s_max,
+                                  &s->diameter, err);
+}

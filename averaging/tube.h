@@ -78,6 +78,18 @@ int mimas_tube_extent(const mimas_tube_geom *g, const mimas_frame *f, const int3
                       size_t ntypes, int exclude, double *s_min, double *s_max, double *diameter,
                       mimas_error *err);
 
+/* What a tube command takes from its first frame: the geometry
+ * (mimas_tube_geom_resolve with the frame's tube) and the selected
+ * particles' extent and mean diameter (mimas_tube_extent); plain data, the
+ * same on every MPI rank once rank 0 has decided it. */
+typedef struct mimas_tube_setup {
+    mimas_tube_geom geom;
+    double s_min, s_max, diameter;
+} mimas_tube_setup;
+int mimas_tube_setup_from(mimas_tube_setup *s, const char *axis_spec, double radius,
+                          const mimas_frame *f, const int32_t *types, size_t ntypes, int exclude,
+                          mimas_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -4,12 +4,18 @@
 #include <config.h>
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "axial_profile.h"
+#include "cli_frames.h"
+#include "cli_tube.h"
+#include "cli_table.h"
 #include "commands.h"
+#include "frame_pack.h"
+#include "parallel.h"
 #include "plug_tracking.h"
 #include "plugs.h"
 #include "plugs_output.h"
@@ -43,15 +49,16 @@ static const cli_option options[] = {
                              "the range)"},
     {"flow-at", 0, "S", "cross-section of the solid mass flow rate (m; default the middle of "
                         "the range)"},
-    {"plugs", 0, "FILE", "write the plug table to FILE (default: standard output, unless -o)"},
-    {"tracks", 0, "FILE", "write the track table to FILE"},
-    {"events", 0, "FILE", "write the merge and split events to FILE"},
-    {"profiles", 0, "FILE", "write the plug-centred profiles to FILE"},
-    {"stats", 0, "FILE", "write the statistics along the tube to FILE"},
-    {"summary", 0, "FILE", "write the whole-run figures to FILE"},
+    {"plugs", 0, "FILE", "write the plug table to FILE, or - for standard output (the default, "
+                         "unless -o or another table takes standard output)"},
+    {"tracks", 0, "FILE", "write the track table to FILE (- : standard output)"},
+    {"events", 0, "FILE", "write the merge and split events to FILE (- : standard output)"},
+    {"profiles", 0, "FILE", "write the plug-centred profiles to FILE (- : standard output)"},
+    {"stats", 0, "FILE", "write the statistics along the tube to FILE (- : standard output)"},
+    {"summary", 0, "FILE", "write the whole-run figures to FILE (- : standard output)"},
     {"axial", 0, "FILE.h5", "write the axial profiles as space-time fields (slice x frame; "
                             "XDMF sidecar FILE.xdmf)"},
-    {"axial-tsv", 0, "FILE", "write the axial profiles as a long table"},
+    {"axial-tsv", 0, "FILE", "write the axial profiles as a long table (- : standard output)"},
     {"spacetime", 0, "FILE.png", "draw the space-time porosity diagram with the plug centres "
                                  "(gnuplot)"},
     {"output", 'o', "FILE.h5", "write every table to one HDF5 file (a group per table)"},
@@ -61,12 +68,13 @@ static const cli_option options[] = {
     {"types", 0, "L", "use only particles of these types (comma list)"},
     {"exclude-types", 0, "L", "drop particles of these types (e.g. glued wall particles; their "
                               "contacts become wall contacts of the others)"},
+    CLI_TABLE_OPTIONS,
 };
 
 enum { O_AXIS, O_RADIUS, O_RANGE, O_SLICE, O_DIAMETER, O_TEMP, O_THRESHOLD, O_MINLEN,
        O_MAXSHIFT, O_PRANGE, O_PBIN, O_VWIN, O_LWIN, O_SWIN, O_FLOWAT, O_PLUGS, O_TRACKS,
        O_EVENTS, O_PROFILES, O_STATS, O_SUMMARY, O_AXIAL, O_AXIAL_TSV, O_SPACETIME, O_OUTPUT,
-       O_FROM, O_TO, O_EVERY, O_TYPES, O_EXCLUDE };
+       O_FROM, O_TO, O_EVERY, O_TYPES, O_EXCLUDE, O_TABLE };
 
 typedef struct plugs_args {
     const cli_command *cmd;
@@ -74,11 +82,13 @@ typedef struct plugs_args {
     double radius, s0, s1, slice, diameter, threshold, min_length, max_shift;
     double p0, p1, pbin, v0, v1, l0, l1, stats_w, flow_at;
     int has_range, has_flow_at;
+    int plugs_off;             /* another table takes standard output */
     unsigned temperature;
     const char *plugs, *tracks, *events, *profiles, *stats, *summary, *axial, *axial_tsv,
         *spacetime, *output;
     cli_window window;
     cli_types types;
+    cli_table_options table;
 } plugs_args;
 
 static int on_option(void *ctx, size_t opt, const char *arg)
@@ -87,7 +97,9 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     switch (opt) {
     case O_AXIS: a->axis = arg; return 0;
     case O_RADIUS: return cli_positive_option(a->cmd, "tube-radius", arg, &a->radius);
-    case O_RANGE: a->has_range = 1; return cli_pair_option(a->cmd, "range", "S0:S1", arg, &a->s0, &a->s1);
+    case O_RANGE:
+        a->has_range = 1;
+        return cli_pair_option(a->cmd, "range", "S0:S1", arg, &a->s0, &a->s1);
     case O_SLICE: return cli_positive_option(a->cmd, "slice", arg, &a->slice);
     case O_DIAMETER: return cli_positive_option(a->cmd, "diameter", arg, &a->diameter);
     case O_TEMP: return cli_parse_temperature(a->cmd, arg, &a->temperature);
@@ -122,57 +134,57 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_EVERY: return cli_window_every(a->cmd, &a->window, arg);
     case O_TYPES:
     case O_EXCLUDE: return cli_types_option(a->cmd, &a->types, opt == O_EXCLUDE, arg);
+    default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
-    return 1;
 }
 
 /* ---- the tables' columns ---- */
 
 static const mimas_ocolumn plug_cols[] = {
-    {"frame", "1", "index of the frame among those used (from 0)", 0},
-    {"time", "s", "simulation time", 0},
-    {"track", "1", "track id (from 1)", 0},
-    {"centre", "m", "centre of mass of the particle volume in the plug's slices", 0},
-    {"front", "m", "end of the plug towards the outlet (larger s)", 0},
-    {"back", "m", "end of the plug towards the inlet", 0},
-    {"length", "m", "front - back", 0},
-    {"count", "1", "particles in the plug (volume fractions summed)", 0},
-    {"mass", "kg", "mass in the plug's slices", 0},
-    {"velocity", "m s-1", "mass-weighted mean axial particle velocity", 0},
-    {"min_porosity", "1", "smallest slice porosity in the plug", 0},
-    {"wall_pressure", "Pa", "normal force on the wall along the plug / (2 pi R length)", 0},
-    {"cut", "1", "1 if the plug touches an end of the range (its extent is not known)", 0},
+    {"frame", "1", "index of the frame among those used (from 0)", 0, 1},
+    {"time", "s", "simulation time", 0, 0},
+    {"track", "1", "track id (from 1)", 0, 1},
+    {"centre", "m", "centre of mass of the particle volume in the plug's slices", 0, 0},
+    {"front", "m", "end of the plug towards the outlet (larger s)", 0, 0},
+    {"back", "m", "end of the plug towards the inlet", 0, 0},
+    {"length", "m", "front - back", 0, 0},
+    {"count", "1", "particles in the plug (volume fractions summed)", 0, 0},
+    {"mass", "kg", "mass in the plug's slices", 0, 0},
+    {"velocity", "m s-1", "mass-weighted mean axial particle velocity", 0, 0},
+    {"min_porosity", "1", "smallest slice porosity in the plug", 0, 0},
+    {"wall_pressure", "Pa", "normal force on the wall along the plug / (2 pi R length)", 0, 0},
+    {"cut", "1", "1 if the plug touches an end of the range (its extent is not known)", 0, 1},
 };
 enum { NPLUGCOLS = sizeof plug_cols / sizeof plug_cols[0] };
 
 static const mimas_ocolumn track_cols[] = {
-    {"track", "1", "track id", 0},
-    {"first_time", "s", "first frame of the track", 0},
-    {"last_time", "s", "last frame of the track", 0},
-    {"frames", "1", "frames the plug was seen in", 0},
-    {"plug_velocity", "m s-1", "least-squares slope of the centre's trajectory", 0},
-    {"plug_velocity_err", "m s-1", "its standard error (from the scatter about the line)", 0},
-    {"front_velocity", "m s-1", "least-squares slope of the front's trajectory", 0},
-    {"back_velocity", "m s-1", "least-squares slope of the back's trajectory", 0},
-    {"particle_velocity", "m s-1", "mean mass-weighted particle velocity in the plug", 0},
-    {"length", "m", "mean length", 0},
-    {"mass", "kg", "mean mass", 0},
-    {"fitted", "1", "frames used for the velocities and means (the plug not cut)", 0},
+    {"track", "1", "track id", 0, 1},
+    {"first_time", "s", "first frame of the track", 0, 0},
+    {"last_time", "s", "last frame of the track", 0, 0},
+    {"frames", "1", "frames the plug was seen in", 0, 1},
+    {"plug_velocity", "m s-1", "least-squares slope of the centre's trajectory", 0, 0},
+    {"plug_velocity_err", "m s-1", "its standard error (from the scatter about the line)", 0, 0},
+    {"front_velocity", "m s-1", "least-squares slope of the front's trajectory", 0, 0},
+    {"back_velocity", "m s-1", "least-squares slope of the back's trajectory", 0, 0},
+    {"particle_velocity", "m s-1", "mean mass-weighted particle velocity in the plug", 0, 0},
+    {"length", "m", "mean length", 0, 0},
+    {"mass", "kg", "mean mass", 0, 0},
+    {"fitted", "1", "frames used for the velocities and means (the plug not cut)", 0, 1},
 };
 enum { NTRACKCOLS = sizeof track_cols / sizeof track_cols[0] };
 
 static const mimas_ocolumn event_cols[] = {
-    {"time", "s", "frame in which the plugs after the event are first seen", 0},
-    {"kind", "", "merge (n plugs -> 1), split (1 -> n) or regroup (n -> m)", 1},
-    {"tracks", "", "the tracks that end > the tracks that start, comma lists", 1},
-    {"centre", "m", "mass-weighted centre of the plugs after the event", 0},
+    {"time", "s", "frame in which the plugs after the event are first seen", 0, 0},
+    {"kind", "", "merge (n plugs -> 1), split (1 -> n) or regroup (n -> m)", 1, 0},
+    {"tracks", "", "the tracks that end > the tracks that start, comma lists", 1, 0},
+    {"centre", "m", "mass-weighted centre of the plugs after the event", 0, 0},
 };
 
 static const mimas_ocolumn summary_cols[] = {
-    {"quantity", "", "name", 1},
-    {"value", "", "mean over the frames used (or a count)", 0},
-    {"error", "", "standard error over frames (nan where it does not apply)", 0},
-    {"unit", "", "SI unit", 1},
+    {"quantity", "", "name", 1, 0},
+    {"value", "", "mean over the frames used (or a count)", 0, 0},
+    {"error", "", "standard error over frames (nan where it does not apply)", 0, 0},
+    {"unit", "", "SI unit", 1, 0},
 };
 
 /* ---- the run ---- */
@@ -190,10 +202,15 @@ typedef struct plugs_run {
     double *prof;
     size_t prof_cap;
     size_t *prof_count;        /* bins x fields, the profiles' workspace */
+    /* rank 0: a frame's result unpacked, in frame order */
+    mimas_plug_list got;
+    double *got_prof;
+    size_t got_cap;
     /* outputs */
     mimas_h5out *h5;
     cli_output plug_out, axial_out;
-    mimas_otable *plug_tab, *axial_tab;
+    cli_otable plug_tab, axial_tab;
+    int plug_on, axial_on;     /* the tables are open */
     FILE *plug_tmp;            /* the plug table on its way to standard output */
     mimas_ocolumn axial_cols[3 + MIMAS_AX_NFIELDS];
     mimas_spacetime *st;
@@ -204,20 +221,19 @@ typedef struct plugs_run {
     size_t frames;
 } plugs_run;
 
-/* The geometry and the defaults that depend on the data, from the first
- * frame used. */
-static int setup(plugs_run *u, const mimas_frame *f, mimas_error *err)
+/* The slices, detection and tracking options and the defaults that depend
+ * on the data (ts: from the first frame, the same on every rank); rank 0
+ * opens the per-frame outputs. */
+static int setup(void *ctx, const void *data, mimas_error *err)
 {
+    plugs_run *u = ctx;
+    const mimas_tube_setup *ts = data;
     plugs_args *a = u->a;
     mimas_axial_options *o = &u->ao;
     memset(o, 0, sizeof *o);
-    int rc = mimas_tube_geom_resolve(&o->geom, a->axis, a->radius, &f->tube, err);
-    double smin, smax, d;
-    if (!rc)
-        rc = mimas_tube_extent(&o->geom, f, a->types.types, a->types.n, a->types.exclude, &smin,
-                               &smax, &d, err);
-    if (rc)
-        return rc;
+    o->geom = ts->geom;
+    double smin = ts->s_min, smax = ts->s_max, d = ts->diameter;
+    int rc;
     if (a->diameter > 0)
         d = a->diameter;
     double s0 = a->has_range ? a->s0 : isfinite(o->geom.length) ? 0.0 : smin;
@@ -253,65 +269,87 @@ static int setup(plugs_run *u, const mimas_frame *f, mimas_error *err)
         return mimas_error_set(err, MIMAS_EUSAGE, "--stats-window: too many windows");
     t->stats_n = ns < 1 ? 1 : (size_t)ns;
     t->stats_w = (s1 - s0) / (double)t->stats_n;
-    if (!u->in->quiet && (!a->has_range || !(a->slice > 0) || !(a->diameter > 0)))
+    int root = mimas_par_rank() == 0;
+    if (root && !u->in->quiet && (!a->has_range || !(a->slice > 0) || !(a->diameter > 0)))
         fprintf(stderr, "mimas plugs: tube radius %g m, %zu slices of %g m over %g:%g m, "
                         "d = %g m\n", o->geom.radius, o->slices.n, o->slices.w, s0, s1, d);
     if ((rc = mimas_axial_create(&u->ax, o, err)) ||
         (rc = mimas_tracker_create(&u->tr, t, err)))
         return rc;
     /* the per-frame outputs */
+    if (!root)
+        return MIMAS_OK;
     if (a->axial && (rc = mimas_spacetime_open(&u->st, a->axial, u->ax, err)))
         return rc;
     if (a->spacetime && (rc = mimas_stplot_open(&u->plot, a->spacetime, &o->slices, err)))
         return rc;
     if (a->axial_tsv) {
-        static const mimas_ocolumn lead[3] = {{"frame", "1", "frame index", 0},
-                                              {"time", "s", "time", 0},
-                                              {"s", "m", "slice centre", 0}};
+        static const mimas_ocolumn lead[3] = {{"frame", "1", "frame index", 0, 1},
+                                              {"time", "s", "time", 0, 0},
+                                              {"s", "m", "slice centre", 0, 0}};
         memcpy(u->axial_cols, lead, sizeof lead);
         for (int k = 0; k < MIMAS_AX_NFIELDS; k++) {
             const mimas_axial_field_desc *fd = mimas_axial_field(k);
-            u->axial_cols[3 + k] = (mimas_ocolumn){fd->name, fd->unit, fd->meaning, 0};
+            u->axial_cols[3 + k] = (mimas_ocolumn){fd->name, fd->unit, fd->meaning, 0, 0};
         }
         if ((rc = cli_output_open(&u->axial_out, a->axial_tsv, err)) ||
-            (rc = mimas_otable_open(&u->axial_tab, u->axial_out.fp, NULL, NULL, u->axial_cols,
-                                    3 + MIMAS_AX_NFIELDS, err)))
+            (rc = cli_otable_open(&u->axial_tab, u->axial_out.fp, &a->table, NULL, NULL,
+                                  u->axial_cols, 3 + MIMAS_AX_NFIELDS, err)))
             return rc;
+        u->axial_on = 1;
     }
     return MIMAS_OK;
 }
 
-static int frame_outputs(plugs_run *u, const mimas_frame *f, mimas_error *err)
+/* ---- a frame: computed on the rank that owns it, used on rank 0 ---- */
+
+/* A frame's result: step, time, the plug count n, the whole-frame figures,
+ * the slices' fields, the n plugs and their plug-centred profiles. */
+typedef struct frame_head {
+    int64_t step;
+    double time;
+    uint64_t nplugs;
+    mimas_axial_totals totals;
+} frame_head;
+
+static int pack_frame(const plugs_run *u, const mimas_frame *f, mimas_bytes *b,
+                      mimas_error *err)
 {
-    int rc = MIMAS_OK;
-    size_t idx = u->frames;
-    if (u->st)
-        rc = mimas_spacetime_append(u->st, u->ax, f->step, f->time, err);
-    if (!rc && u->plot)
-        rc = mimas_stplot_frame(u->plot, u->ax, f->time, &u->list, err);
-    for (size_t k = 0; !rc && u->axial_tab && k < u->ao.slices.n; k++) {
-        double row[3 + MIMAS_AX_NFIELDS] = {(double)idx, f->time,
-                                            mimas_slice_centre(&u->ao.slices, k)};
-        memcpy(row + 3, mimas_axial_row(u->ax, k), MIMAS_AX_NFIELDS * sizeof(double));
-        rc = mimas_otable_row(u->axial_tab, row, NULL, err);
+    size_t ns = u->ao.slices.n, np = u->list.n, nb = u->to.bins.n * MIMAS_AX_NFIELDS;
+    size_t nf = ns * MIMAS_AX_NFIELDS * sizeof(double);
+    size_t total = sizeof(frame_head) + nf + np * (sizeof(mimas_plug) + nb * sizeof(double));
+    if (total > b->cap) {
+        unsigned char *q = realloc(b->data, total);
+        if (!q)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        b->data = q;
+        b->cap = total;
     }
-    for (size_t j = 0; !rc && u->plug_tab && j < u->list.n; j++) {
-        const mimas_plug *p = &u->list.p[j];
-        double row[NPLUGCOLS] = {(double)p->frame, p->time, (double)p->track, p->centre,
-                                 p->front, p->back, p->length, p->count, p->mass, p->velocity,
-                                 p->min_porosity, p->wall_pressure, (double)p->cut};
-        rc = mimas_otable_row(u->plug_tab, row, NULL, err);
+    frame_head h = {f->step, f->time, np, mimas_axial_frame_totals(u->ax)};
+    unsigned char *at = b->data;
+    memcpy(at, &h, sizeof h);
+    at += sizeof h;
+    for (size_t k = 0; k < ns; k++, at += MIMAS_AX_NFIELDS * sizeof(double))
+        memcpy(at, mimas_axial_row(u->ax, k), MIMAS_AX_NFIELDS * sizeof(double));
+    if (np) {
+        memcpy(at, u->list.p, np * sizeof(mimas_plug));
+        at += np * sizeof(mimas_plug);
+        memcpy(at, u->prof, np * nb * sizeof(double));
     }
-    return rc;
+    b->n = total;
+    return MIMAS_OK;
 }
 
-static int one_frame(plugs_run *u, const mimas_frame *f, mimas_error *err)
+/* The per-frame part: slice profiles, the frame's plugs and their
+ * plug-centred profiles, packed into result; index: the frame's place in
+ * the selection. */
+static int one_frame(void *ctx, const mimas_frame *f, size_t index, mimas_bytes *result,
+                     mimas_error *err)
 {
+    plugs_run *u = ctx;
     int rc = MIMAS_OK;
-    if (!u->ax && (rc = setup(u, f, err)))
-        return rc;
     if ((rc = mimas_axial_compute(u->ax, f, err)) ||
-        (rc = mimas_plugs_detect(u->ax, &u->po, u->frames, f->time, &u->list, err)))
+        (rc = mimas_plugs_detect(u->ax, &u->po, index, f->time, &u->list, err)))
         return rc;
     size_t need = u->list.n * u->to.bins.n * MIMAS_AX_NFIELDS;
     if (need > u->prof_cap) {
@@ -327,16 +365,87 @@ static int one_frame(plugs_run *u, const mimas_frame *f, mimas_error *err)
     for (size_t j = 0; j < u->list.n; j++)
         mimas_plug_profile(u->ax, &u->list.p[j], &u->to.bins,
                            &u->prof[j * u->to.bins.n * MIMAS_AX_NFIELDS], u->prof_count);
-    if ((rc = mimas_tracker_add(u->tr, f->time, &u->list, u->prof, err)) ||
-        (rc = frame_outputs(u, f, err)))
+    return pack_frame(u, f, result, err);
+}
+
+static int frame_outputs(plugs_run *u, const frame_head *h, mimas_error *err)
+{
+    int rc = MIMAS_OK;
+    size_t idx = u->frames;
+    if (u->st)
+        rc = mimas_spacetime_append(u->st, u->ax, h->step, h->time, err);
+    if (!rc && u->plot)
+        rc = mimas_stplot_frame(u->plot, u->ax, h->time, &u->got, err);
+    for (size_t k = 0; !rc && u->axial_on && k < u->ao.slices.n; k++) {
+        double row[3 + MIMAS_AX_NFIELDS] = {(double)idx, h->time,
+                                            mimas_slice_centre(&u->ao.slices, k)};
+        memcpy(row + 3, mimas_axial_row(u->ax, k), MIMAS_AX_NFIELDS * sizeof(double));
+        rc = cli_otable_row(&u->axial_tab, row, NULL, err);
+    }
+    for (size_t j = 0; !rc && u->plug_on && j < u->got.n; j++) {
+        const mimas_plug *p = &u->got.p[j];
+        double row[NPLUGCOLS] = {(double)p->frame, p->time, (double)p->track, p->centre,
+                                 p->front, p->back, p->length, p->count, p->mass, p->velocity,
+                                 p->min_porosity, p->wall_pressure, (double)p->cut};
+        rc = cli_otable_row(&u->plug_tab, row, NULL, err);
+    }
+    return rc;
+}
+
+/* The sequential part, on rank 0 in frame order: a frame's result into the
+ * tracking, the per-frame outputs and the whole-run figures. */
+static int use_frame(void *ctx, size_t position, const unsigned char *data, size_t n,
+                     mimas_error *err)
+{
+    (void)position;
+    plugs_run *u = ctx;
+    frame_head h;
+    size_t ns = u->ao.slices.n, nb = u->to.bins.n * MIMAS_AX_NFIELDS;
+    size_t nf = ns * MIMAS_AX_NFIELDS * sizeof(double);
+    if (n < sizeof h + nf)
+        return mimas_error_set(err, MIMAS_EDATA, "a per-frame result is truncated");
+    memcpy(&h, data, sizeof h);
+    size_t np = (size_t)h.nplugs;
+    if (n != sizeof h + nf + np * (sizeof(mimas_plug) + nb * sizeof(double)))
+        return mimas_error_set(err, MIMAS_EDATA, "a per-frame result is truncated");
+    const unsigned char *at = data + sizeof h;
+    double *fields = malloc(nf ? nf : 1);
+    if (!fields)
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    memcpy(fields, at, nf);
+    mimas_axial_load(u->ax, fields, &h.totals);
+    free(fields);
+    at += nf;
+    if (np > u->got.cap) {
+        mimas_plug *p = realloc(u->got.p, np * sizeof *p);
+        if (!p)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        u->got.p = p;
+        u->got.cap = np;
+    }
+    if (np * nb > u->got_cap) {
+        double *q = realloc(u->got_prof, np * nb * sizeof *q);
+        if (!q)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        u->got_prof = q;
+        u->got_cap = np * nb;
+    }
+    u->got.n = np;
+    if (np) {
+        memcpy(u->got.p, at, np * sizeof(mimas_plug));
+        memcpy(u->got_prof, at + np * sizeof(mimas_plug), np * nb * sizeof(double));
+    }
+    int rc = mimas_tracker_add(u->tr, h.time, &u->got, u->got_prof, err);
+    if (rc && rc != MIMAS_EIO && rc != MIMAS_EUSAGE)
+        mimas_error_prefix(err, "%s: step %lld", u->input, (long long)h.step);
+    if (rc || (rc = frame_outputs(u, &h, err)))
         return rc;
-    mimas_axial_totals t = mimas_axial_frame_totals(u->ax);
-    mimas_sample_mean_add(&u->particles, t.particles);
-    mimas_sample_mean_add(&u->mass, t.mass);
-    mimas_sample_mean_add(&u->flow, t.flow_rate);
-    if (!isnan(t.pressure_drop))
-        mimas_sample_mean_add(&u->dp, t.pressure_drop);
-    u->plugs_seen += u->list.n;
+    mimas_sample_mean_add(&u->particles, h.totals.particles);
+    mimas_sample_mean_add(&u->mass, h.totals.mass);
+    mimas_sample_mean_add(&u->flow, h.totals.flow_rate);
+    if (!isnan(h.totals.pressure_drop))
+        mimas_sample_mean_add(&u->dp, h.totals.pressure_drop);
+    u->plugs_seen += np;
     u->frames++;
     return MIMAS_OK;
 }
@@ -345,7 +454,7 @@ static int one_frame(plugs_run *u, const mimas_frame *f, mimas_error *err)
 
 /* Opens a table at path (TSV, "-" standard output) and/or in group name of
  * the HDF5 output, writes rows with fill(), closes. */
-typedef int (*fill_fn)(const plugs_run *u, mimas_otable *t, mimas_error *err);
+typedef int (*fill_fn)(const plugs_run *u, cli_otable *t, mimas_error *err);
 
 static int write_table(plugs_run *u, const char *path, const char *group,
                        const mimas_ocolumn *cols, size_t n, fill_fn fill, mimas_error *err)
@@ -354,19 +463,19 @@ static int write_table(plugs_run *u, const char *path, const char *group,
         return MIMAS_OK;
     cli_output out = {0};
     int rc = path ? cli_output_open(&out, path, err) : MIMAS_OK;
-    mimas_otable *t = NULL;
+    cli_otable t = {0};
     if (!rc)
-        rc = mimas_otable_open(&t, path ? out.fp : NULL, u->h5, group, cols, n, err);
+        rc = cli_otable_open(&t, path ? out.fp : NULL, &u->a->table, u->h5, group, cols, n, err);
     if (!rc)
-        rc = fill(u, t, err);
-    int closed = mimas_otable_close(t, err);
+        rc = fill(u, &t, err);
+    int closed = cli_otable_close(&t, err);
     if (!rc)
         rc = closed;
     closed = cli_output_close(&out, rc == MIMAS_OK, err);
     return rc ? rc : closed;
 }
 
-static int fill_tracks(const plugs_run *u, mimas_otable *t, mimas_error *err)
+static int fill_tracks(const plugs_run *u, cli_otable *t, mimas_error *err)
 {
     int rc = MIMAS_OK;
     for (size_t k = 0; !rc && k < mimas_tracker_ntracks(u->tr); k++) {
@@ -375,12 +484,12 @@ static int fill_tracks(const plugs_run *u, mimas_otable *t, mimas_error *err)
                                   (double)r->frames, r->plug_velocity, r->plug_velocity_err,
                                   r->front_velocity, r->back_velocity, r->particle_velocity,
                                   r->length, r->mass, (double)r->fitted};
-        rc = mimas_otable_row(t, row, NULL, err);
+        rc = cli_otable_row(t, row, NULL, err);
     }
     return rc;
 }
 
-static int fill_events(const plugs_run *u, mimas_otable *t, mimas_error *err)
+static int fill_events(const plugs_run *u, cli_otable *t, mimas_error *err)
 {
     int rc = MIMAS_OK;
     for (size_t k = 0; !rc && k < mimas_tracker_nevents(u->tr); k++) {
@@ -392,12 +501,12 @@ static int fill_events(const plugs_run *u, mimas_otable *t, mimas_error *err)
                                     m == 0 ? "" : m == e->nbefore ? ">" : ",", e->tracks[m]);
         double row[4] = {e->time, 0, 0, e->centre};
         const char *text[4] = {NULL, mimas_event_kind_name(e->kind), ids, NULL};
-        rc = mimas_otable_row(t, row, text, err);
+        rc = cli_otable_row(t, row, text, err);
     }
     return rc;
 }
 
-static int fill_profiles(const plugs_run *u, mimas_otable *t, mimas_error *err)
+static int fill_profiles(const plugs_run *u, cli_otable *t, mimas_error *err)
 {
     int rc = MIMAS_OK;
     const mimas_profile_bins *b = &u->to.bins;
@@ -411,12 +520,12 @@ static int fill_profiles(const plugs_run *u, mimas_otable *t, mimas_error *err)
                 nt = n;
         }
         row[1 + 2 * MIMAS_AX_NFIELDS] = (double)nt;
-        rc = mimas_otable_row(t, row, NULL, err);
+        rc = cli_otable_row(t, row, NULL, err);
     }
     return rc;
 }
 
-static int fill_stats(const plugs_run *u, mimas_otable *t, mimas_error *err)
+static int fill_stats(const plugs_run *u, cli_otable *t, mimas_error *err)
 {
     int rc = MIMAS_OK;
     for (size_t w = 0; !rc && w < u->to.stats_n; w++) {
@@ -433,12 +542,12 @@ static int fill_stats(const plugs_run *u, mimas_otable *t, mimas_error *err)
         double *r = &row[3 + 3 * MIMAS_ST_N];
         mimas_tracker_passages(u->tr, w, &passages, &r[1], &r[2]);
         r[0] = (double)passages;
-        rc = mimas_otable_row(t, row, NULL, err);
+        rc = cli_otable_row(t, row, NULL, err);
     }
     return rc;
 }
 
-static int fill_summary(const plugs_run *u, mimas_otable *t, mimas_error *err)
+static int fill_summary(const plugs_run *u, cli_otable *t, mimas_error *err)
 {
     size_t merges = 0, splits = 0;
     for (size_t k = 0; k < mimas_tracker_nevents(u->tr); k++) {
@@ -468,7 +577,7 @@ static int fill_summary(const plugs_run *u, mimas_otable *t, mimas_error *err)
         if (rows[k].m)
             mimas_sample_mean_get(rows[k].m, &v[1], &v[2], NULL);
         const char *text[4] = {rows[k].name, NULL, NULL, rows[k].unit};
-        rc = mimas_otable_row(t, v, text, err);
+        rc = cli_otable_row(t, v, text, err);
     }
     return rc;
 }
@@ -486,7 +595,7 @@ static void col(colbuf *b, const char *name, const char *unit, const char *meani
         snprintf(b->names[b->n], sizeof b->names[0], "%s", name);
         name = b->names[b->n];
     }
-    b->c[b->n++] = (mimas_ocolumn){name, unit, meaning, 0};
+    b->c[b->n++] = (mimas_ocolumn){name, unit, meaning, 0, 0};
 }
 
 static void profile_columns(colbuf *b)
@@ -501,6 +610,7 @@ static void profile_columns(colbuf *b)
         col(b, sem, d->unit, "standard error over tracks", 1);
     }
     col(b, "tracks", "1", "tracks with a porosity value in the bin", 0);
+    b->c[b->n - 1].integer = 1;
 }
 
 static void stats_columns(colbuf *b)
@@ -517,8 +627,10 @@ static void stats_columns(colbuf *b)
             "of the plugs centred in the window", 0);
         col(b, e, mimas_stat_unit(q), "standard error over tracks", 1);
         col(b, n, "1", "tracks", 1);
+        b->c[b->n - 1].integer = 1;
     }
     col(b, "passages", "1", "net passages of plug centres through the window centre", 0);
+    b->c[b->n - 1].integer = 1;
     col(b, "passage_rate", "s-1", "passages / time span", 0);
     col(b, "passage_rate_err", "s-1", "sqrt(|passages|) / time span", 0);
 }
@@ -561,12 +673,10 @@ static int finish(plugs_run *u, int argc, char **argv, mimas_error *err)
         rc = mimas_stplot_finish(u->plot, err);
         u->plot = NULL;
     }
-    int closed = mimas_otable_close(u->plug_tab, err);
-    u->plug_tab = NULL;
+    int closed = cli_otable_close(&u->plug_tab, err);
     if (!rc)
         rc = closed;
-    closed = mimas_otable_close(u->axial_tab, err);
-    u->axial_tab = NULL;
+    closed = cli_otable_close(&u->axial_tab, err);
     if (!rc)
         rc = closed;
     if (!rc && u->h5) {
@@ -586,8 +696,8 @@ static int finish(plugs_run *u, int argc, char **argv, mimas_error *err)
 static void cleanup(plugs_run *u, mimas_error *err)
 {
     mimas_error junk;
-    mimas_otable_close(u->plug_tab, &junk);
-    mimas_otable_close(u->axial_tab, &junk);
+    cli_otable_close(&u->plug_tab, &junk);
+    cli_otable_close(&u->axial_tab, &junk);
     cli_output_close(&u->plug_out, 0, &junk);
     cli_output_close(&u->axial_out, 0, &junk);
     mimas_spacetime_abort(u->st);
@@ -598,6 +708,8 @@ static void cleanup(plugs_run *u, mimas_error *err)
     mimas_axial_free(u->ax);
     mimas_tracker_free(u->tr);
     mimas_plug_list_free(&u->list);
+    mimas_plug_list_free(&u->got);
+    free(u->got_prof);
     free(u->prof);
     free(u->prof_count);
     (void)err;
@@ -619,6 +731,28 @@ static int run(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse(cmd, argc, argv, on_option, &a, &in, &first);
     if (!rc && first >= argc)
         rc = cli_fail(cmd, 1, "no input file (see mimas plugs --help)");
+    /* one table at most on standard output ("-"); the plug table goes there
+     * unless another table or -o takes its place */
+    const char *const tables[] = {a.plugs, a.tracks, a.events, a.profiles, a.stats, a.summary,
+                                  a.axial_tsv};
+    static const char *const table_opts[] = {"plugs", "tracks", "events", "profiles", "stats",
+                                             "summary", "axial-tsv"};
+    int on_stdout = -1;
+    for (int k = 0; !rc && k < 7; k++) {
+        if (!tables[k] || strcmp(tables[k], "-"))
+            continue;
+        if (on_stdout >= 0)
+            rc = cli_fail(cmd, 1, "--%s - and --%s -: only one table can go to standard output",
+                          table_opts[on_stdout], table_opts[k]);
+        on_stdout = k;
+    }
+    if (on_stdout > 0 && !a.plugs)
+        a.plugs_off = 1;
+    for (int k = 0; !rc && k < 7; k++)
+        rc = cli_refuse_input_as_output(cmd, tables[k], &in, argv + first, argc - first);
+    if (!rc)
+        rc = cli_refuse_input_as_output(cmd, a.output, &in, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.axial, &in, argv + first, argc - first);
     mimas_reader *r = NULL;
     if (!rc)
         rc = cli_open_inputs(cmd, &in, argc, argv, first, &r);
@@ -633,45 +767,41 @@ static int run(const cli_command *cmd, int argc, char **argv)
     u.input = argv[first];
     mimas_error err;
     int status = MIMAS_OK;
-    if (a.output)
+    /* the outputs on rank 0 only (under MPI frame j is computed on rank
+     * j mod N and its result used on rank 0 in frame order) */
+    int root = mimas_par_rank() == 0;
+    if (root && a.output)
         status = mimas_h5out_open(&u.h5, a.output, &err);
     /* the plug table streams; for standard output through a temporary file,
      * so that a failed run prints nothing */
-    int to_tsv = a.plugs || !a.output;
+    int to_tsv = root && !a.plugs_off && (a.plugs || !a.output);
     int to_stdout = to_tsv && (!a.plugs || !strcmp(a.plugs, "-"));
     if (!status && to_stdout && !(u.plug_tmp = tmpfile()))
         status = mimas_error_set(&err, MIMAS_EIO, "cannot make a temporary file");
     if (!status && to_tsv && !to_stdout)
         status = cli_output_open(&u.plug_out, a.plugs, &err);
     FILE *plug_fp = to_stdout ? u.plug_tmp : to_tsv ? u.plug_out.fp : NULL;
-    if (!status)
-        status = mimas_otable_open(&u.plug_tab, plug_fp, u.h5, "/plugs", plug_cols, NPLUGCOLS,
-                                   &err);
-    mimas_frame f;
-    mimas_frame_init(&f);
+    if (!status && root)
+        status = cli_otable_open(&u.plug_tab, plug_fp, &a.table, u.h5, "/plugs", plug_cols,
+                                 NPLUGCOLS, &err);
+    u.plug_on = root && !status;
+    status = mimas_par_agree(status, SIZE_MAX, &err);
     cli_progress prog;
     cli_progress_start(&prog, &in);
-    while (!status && (status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
-        int take = cli_window_take(&a.window, &f, argv[first], &err);
-        if (take < 0) {
-            status = MIMAS_EUSAGE;
-            break;
-        }
-        if (!take)
-            continue;
-        status = one_frame(&u, &f, &err);
-        if (status && status != MIMAS_EIO && status != MIMAS_EUSAGE)
-            mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
-        cli_progress_frame(&prog, cmd, u.frames, (long long)f.step, f.time);
-    }
+    cli_frames frames;
+    cli_frames_init(&frames, r, &a.window, argv[first]);
+    cli_tube_pick pick = {a.axis, a.radius, &a.types};
+    mimas_tube_setup ts;
+    memset(&ts, 0, sizeof ts);
+    cli_frame_work work = {&u, cli_tube_decide, &pick, &ts, sizeof ts, setup, one_frame,
+                           use_frame};
+    if (!status)
+        status = cli_frames_run(&frames, &work, cmd, &prog, &err);
     cli_progress_done(&prog);
-    mimas_frame_free(&f);
     mimas_reader_close(r);
-    if (status == MIMAS_END && !u.frames)
-        status = mimas_error_set(&err, MIMAS_EDATA, "%s: no frame in the selected time range",
-                                 argv[first]);
-    if (status == MIMAS_END)
+    if (status == MIMAS_END && root)
         status = finish(&u, argc, argv, &err);
+    status = mimas_par_share(status, NULL, 0, &err);
     cleanup(&u, &err);
     cli_inputs_free(&in);
     if (status && status != MIMAS_END)

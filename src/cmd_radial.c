@@ -3,12 +3,18 @@
 #include <config.h>
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "axial_profile.h"
+#include "cli_frames.h"
+#include "cli_tube.h"
+#include "cli_table.h"
 #include "commands.h"
+#include "frame_pack.h"
+#include "parallel.h"
 #include "plugs.h"
 #include "plugs_output.h"
 #include "radial.h"
@@ -40,11 +46,12 @@ static const cli_option options[] = {
     {"every", 0, "K", "use every K-th frame of those selected"},
     {"types", 0, "L", "use only particles of these types (comma list)"},
     {"exclude-types", 0, "L", "drop particles of these types"},
+    CLI_TABLE_OPTIONS,
 };
 
 enum { O_AXIS, O_RADIUS, O_PROBE, O_PLANES, O_SPREAD, O_DR, O_AT, O_INPLUGS, O_DIAMETER, O_TEMP,
        O_SLICE, O_RANGE, O_THRESHOLD, O_MINLEN, O_OUTPUT, O_FROM, O_TO, O_EVERY, O_TYPES,
-       O_EXCLUDE };
+       O_EXCLUDE, O_TABLE };
 
 typedef struct radial_args {
     const cli_command *cmd;
@@ -55,6 +62,7 @@ typedef struct radial_args {
     unsigned temperature;
     cli_window window;
     cli_types types;
+    cli_table_options table;
 } radial_args;
 
 static int on_option(void *ctx, size_t opt, const char *arg)
@@ -75,7 +83,9 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_DIAMETER: return cli_positive_option(a->cmd, "diameter", arg, &a->diameter);
     case O_TEMP: return cli_parse_temperature(a->cmd, arg, &a->temperature);
     case O_SLICE: return cli_positive_option(a->cmd, "slice", arg, &a->slice);
-    case O_RANGE: a->has_range = 1; return cli_pair_option(a->cmd, "range", "S0:S1", arg, &a->s0, &a->s1);
+    case O_RANGE:
+        a->has_range = 1;
+        return cli_pair_option(a->cmd, "range", "S0:S1", arg, &a->s0, &a->s1);
     case O_THRESHOLD:
         if (cli_parse_double(arg, &a->threshold) || !(a->threshold > 0) || !(a->threshold <= 1))
             return cli_fail(a->cmd, 1, "--threshold needs a porosity in (0, 1], not '%s'", arg);
@@ -87,8 +97,8 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_EVERY: return cli_window_every(a->cmd, &a->window, arg);
     case O_TYPES:
     case O_EXCLUDE: return cli_types_option(a->cmd, &a->types, opt == O_EXCLUDE, arg);
+    default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
-    return 1;
 }
 
 typedef struct radial_run {
@@ -100,21 +110,19 @@ typedef struct radial_run {
     double *planes;            /* the planes of a sample */
     size_t nplanes, cap;
     double spacing;            /* between the planes of a group */
-    size_t frames;
 } radial_run;
 
-static int setup(radial_run *u, const mimas_frame *f, mimas_error *err)
+/* The probes (ts: decided on the first frame, the same on every rank). */
+static int setup(void *ctx, const void *data, mimas_error *err)
 {
+    radial_run *u = ctx;
+    const mimas_tube_setup *ts = data;
     radial_args *a = u->a;
     mimas_radial_options o;
     memset(&o, 0, sizeof o);
-    int rc = mimas_tube_geom_resolve(&o.geom, a->axis, a->radius, &f->tube, err);
-    double smin, smax, d;
-    if (!rc)
-        rc = mimas_tube_extent(&o.geom, f, a->types.types, a->types.n, a->types.exclude, &smin,
-                               &smax, &d, err);
-    if (rc)
-        return rc;
+    o.geom = ts->geom;
+    double smin = ts->s_min, smax = ts->s_max, d = ts->diameter;
+    int rc;
     if (a->diameter > 0)
         d = a->diameter;
     o.probe = a->probe > 0 ? a->probe : 0.25 * d;
@@ -162,16 +170,37 @@ static int setup(radial_run *u, const mimas_frame *f, mimas_error *err)
     return MIMAS_OK;
 }
 
-static int one_frame(radial_run *u, const mimas_frame *f, mimas_error *err)
+/* One sample's values appended to the frame's result b. */
+static int keep_sample(const radial_run *u, mimas_bytes *b, mimas_error *err)
 {
+    size_t n = mimas_radial_nradii(u->rad) * MIMAS_RAD_NFIELDS * sizeof(double);
+    if (b->n + n > b->cap) {
+        size_t cap = 2 * (b->n + n);
+        unsigned char *p = realloc(b->data, cap);
+        if (!p)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        b->data = p;
+        b->cap = cap;
+    }
+    memcpy(b->data + b->n, mimas_radial_values(u->rad), n);
+    b->n += n;
+    return MIMAS_OK;
+}
+
+/* The frame's samples (the frame, or its plugs) into result, on the rank
+ * that owns the frame; index: the frame's place in the selection. */
+static int one_frame(void *ctx, const mimas_frame *f, size_t index, mimas_bytes *result,
+                     mimas_error *err)
+{
+    radial_run *u = ctx;
     int rc = MIMAS_OK;
-    if (!u->rad && (rc = setup(u, f, err)))
-        return rc;
-    u->frames++;
-    if (!u->ax)
-        return mimas_radial_sample(u->rad, f, u->planes, u->nplanes, err);
+    result->n = 0;
+    if (!u->ax) {
+        rc = mimas_radial_probe(u->rad, f, u->planes, u->nplanes, err);
+        return rc ? rc : keep_sample(u, result, err);
+    }
     if ((rc = mimas_axial_compute(u->ax, f, err)) ||
-        (rc = mimas_plugs_detect(u->ax, &u->po, u->frames - 1, f->time, &u->list, err)))
+        (rc = mimas_plugs_detect(u->ax, &u->po, index, f->time, &u->list, err)))
         return rc;
     size_t P = u->cap;
     for (size_t j = 0; !rc && j < u->list.n; j++) {
@@ -180,9 +209,31 @@ static int one_frame(radial_run *u, const mimas_frame *f, mimas_error *err)
             continue;
         for (size_t k = 0; k < P; k++)
             u->planes[k] = p->centre + ((double)k - 0.5 * (double)(P - 1)) * u->spacing;
-        rc = mimas_radial_sample(u->rad, f, u->planes, P, err);
+        if (!(rc = mimas_radial_probe(u->rad, f, u->planes, P, err)))
+            rc = keep_sample(u, result, err);
     }
     return rc;
+}
+
+/* Rank 0, in frame order: a frame's samples into the averages (the same
+ * order as a serial run, so the same numbers). */
+static int add_samples(void *ctx, size_t position, const unsigned char *data, size_t n,
+                       mimas_error *err)
+{
+    (void)position;
+    radial_run *u = ctx;
+    size_t one = mimas_radial_nradii(u->rad) * MIMAS_RAD_NFIELDS;
+    if (n % (one * sizeof(double)))
+        return mimas_error_set(err, MIMAS_EDATA, "a per-frame result is truncated");
+    double *v = malloc(one * sizeof *v);
+    if (!v)
+        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    for (size_t at = 0; at < n; at += one * sizeof(double)) {
+        memcpy(v, data + at, one * sizeof *v);
+        mimas_radial_add(u->rad, v);
+    }
+    free(v);
+    return MIMAS_OK;
 }
 
 static int write_results(const radial_run *u, const char *path, mimas_error *err)
@@ -190,23 +241,23 @@ static int write_results(const radial_run *u, const char *path, mimas_error *err
     mimas_ocolumn cols[2 + 2 * MIMAS_RAD_NFIELDS + 1];
     char sem[MIMAS_RAD_NFIELDS][32];
     size_t n = 0;
-    cols[n++] = (mimas_ocolumn){"r", "m", "radius of the probe circle", 0};
+    cols[n++] = (mimas_ocolumn){"r", "m", "radius of the probe circle", 0, 0};
     for (int q = 0; q < MIMAS_RAD_NFIELDS; q++) {
         const mimas_radial_field_desc *d = mimas_radial_field(q);
-        cols[n++] = (mimas_ocolumn){d->name, d->unit, d->meaning, 0};
+        cols[n++] = (mimas_ocolumn){d->name, d->unit, d->meaning, 0, 0};
     }
-    cols[n++] = (mimas_ocolumn){"count", "1", "samples (frames, or plugs with --in-plugs)", 0};
+    cols[n++] = (mimas_ocolumn){"count", "1", "samples (frames, or plugs with --in-plugs)", 0, 1};
     for (int q = 0; q < MIMAS_RAD_NFIELDS; q++) {
         const mimas_radial_field_desc *d = mimas_radial_field(q);
         snprintf(sem[q], sizeof sem[q], "%s_sem", d->name);
-        cols[n++] = (mimas_ocolumn){sem[q], d->unit, "standard error over the samples", 0};
+        cols[n++] = (mimas_ocolumn){sem[q], d->unit, "standard error over the samples", 0, 0};
     }
-    cols[n++] = (mimas_ocolumn){"probes", "1", "probes per circle and plane", 0};
+    cols[n++] = (mimas_ocolumn){"probes", "1", "probes per circle and plane", 0, 1};
     cli_output out = {0};
-    mimas_otable *t = NULL;
+    cli_otable t = {0};
     int rc = cli_output_open(&out, path, err);
     if (!rc)
-        rc = mimas_otable_open(&t, out.fp, NULL, NULL, cols, n, err);
+        rc = cli_otable_open(&t, out.fp, &u->a->table, NULL, NULL, cols, n, err);
     for (size_t k = 0; !rc && k < mimas_radial_nradii(u->rad); k++) {
         double row[2 + 2 * MIMAS_RAD_NFIELDS + 1], sd;
         size_t c = 0, cnt = 0;
@@ -220,9 +271,9 @@ static int write_results(const radial_run *u, const char *path, mimas_error *err
         }
         row[c] = (double)cnt;
         row[2 + 2 * MIMAS_RAD_NFIELDS] = (double)mimas_radial_probes(u->rad, k);
-        rc = mimas_otable_row(t, row, NULL, err);
+        rc = cli_otable_row(&t, row, NULL, err);
     }
-    int closed = mimas_otable_close(t, err);
+    int closed = cli_otable_close(&t, err);
     if (!rc)
         rc = closed;
     closed = cli_output_close(&out, rc == MIMAS_OK, err);
@@ -243,6 +294,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
         rc = cli_fail(cmd, 1, "no input file (see mimas radial --help)");
     if (!rc && a.in_plugs && a.has_at)
         rc = cli_fail(cmd, 1, "--at and --in-plugs exclude each other");
+    if (!rc)
+        rc = cli_refuse_input_as_output(cmd, a.output, &in, argv + first, argc - first);
     mimas_reader *r = NULL;
     if (!rc)
         rc = cli_open_inputs(cmd, &in, argc, argv, first, &r);
@@ -254,36 +307,24 @@ static int run(const cli_command *cmd, int argc, char **argv)
     memset(&u, 0, sizeof u);
     u.a = &a;
     mimas_error err;
-    int status;
-    mimas_frame f;
-    mimas_frame_init(&f);
     cli_progress prog;
     cli_progress_start(&prog, &in);
-    while ((status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
-        int take = cli_window_take(&a.window, &f, argv[first], &err);
-        if (take < 0) {
-            status = MIMAS_EUSAGE;
-            break;
-        }
-        if (!take)
-            continue;
-        status = one_frame(&u, &f, &err);
-        if (status) {
-            if (status != MIMAS_EIO && status != MIMAS_EUSAGE)
-                mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
-            break;
-        }
-        cli_progress_frame(&prog, cmd, u.frames, (long long)f.step, f.time);
-    }
+    /* under MPI: frame j on rank j mod N; the geometry from the first frame
+     * (rank 0's), each frame's samples to rank 0 in frame order */
+    cli_frames frames;
+    cli_frames_init(&frames, r, &a.window, argv[first]);
+    cli_tube_pick pick = {a.axis, a.radius, &a.types};
+    mimas_tube_setup ts;
+    memset(&ts, 0, sizeof ts);
+    cli_frame_work work = {&u, cli_tube_decide, &pick, &ts, sizeof ts, setup, one_frame,
+                           add_samples};
+    int status = cli_frames_run(&frames, &work, cmd, &prog, &err);
     cli_progress_done(&prog);
-    mimas_frame_free(&f);
     mimas_reader_close(r);
     cli_inputs_free(&in);
-    if (status == MIMAS_END && !u.frames)
-        status = mimas_error_set(&err, MIMAS_EDATA, "%s: no frame in the selected time range",
-                                 argv[first]);
-    if (status == MIMAS_END)
+    if (status == MIMAS_END && mimas_par_rank() == 0)
         status = write_results(&u, a.output, &err);
+    status = mimas_par_share(status, NULL, 0, &err);
     mimas_radial_free(u.rad);
     mimas_axial_free(u.ax);
     mimas_plug_list_free(&u.list);

@@ -28,7 +28,8 @@ static const cli_command *const commands[] = {
 /* The commands that split their frames over MPI ranks (docs/parallel.md). */
 static int frame_parallel(const char *name)
 {
-    static const char *const names[] = {"average", "voronoi", "shearband", "disperse"};
+    static const char *const names[] = {"average", "voronoi", "shearband", "disperse", "plugs",
+                                        "radial"};
     for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
         if (!strcmp(names[k], name))
             return 1;
@@ -72,6 +73,10 @@ static int dispatch(int argc, char **argv);
 
 int main(int argc, char **argv)
 {
+    /* before MPI starts: cli_start may re-execute the program (OpenMP's
+     * passive waiting), and a process re-executed after MPI_Init cannot
+     * initialise MPI again */
+    cli_start(argc, argv);
     /* under mpirun: MPI for the frame-parallel commands (docs/parallel.md) */
     if (mimas_par_init(&argc, &argv)) {
         fprintf(stderr, "mimas: MPI could not start\n");
@@ -87,7 +92,6 @@ static int dispatch(int argc, char **argv)
     /* the library checks GSL's return codes (a fit that fails has a status);
      * GSL's default handler would abort the program instead */
     gsl_set_error_handler_off();
-    cli_start(argc, argv);
     if (argc < 2) {
         usage(stderr);
         return 1;

@@ -397,6 +397,7 @@ static void test_geometry(void **state)
     mimas_axial *ax;
     assert_int_equal(mimas_axial_create(&ax, &o, &err), 0);
     assert_int_equal(mimas_axial_compute(ax, &f, &err), 0);
+    assert_close(mimas_axial_frame_totals(ax).particles, 2, 0); /* both counted */
     /* its centre beyond the wall: outside */
     f.particles.pos[1][0] = 0.0051;
     assert_int_equal(mimas_axial_compute(ax, &f, &err), MIMAS_EDATA);
