@@ -2,6 +2,7 @@
 
 #include "cli.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
@@ -123,6 +124,14 @@ void cli_print_help(const cli_command *cmd, FILE *out)
             snprintf(left + w, sizeof left - (size_t)w, " %s", o->arg);
         fprintf(out, "  %-28s %s\n", left, o->help);
     }
+    if (cmd->examples && cmd->examples[0]) {
+        fprintf(out, "\nExamples:\n");
+        for (const char *l = cmd->examples; *l;) {
+            size_t len = strcspn(l, "\n");
+            fprintf(out, len ? "  %.*s\n" : "%.*s\n", (int)len, l);
+            l += len + (l[len] == '\n');
+        }
+    }
 }
 
 /* roff needs backslashes doubled and leading dots or quotes escaped */
@@ -140,6 +149,43 @@ static void roff_text(FILE *out, const char *s)
             fputc(*s, out);
         bol = *s == '\n';
     }
+}
+
+/* EXAMPLES: the "# " lines as text, the commands as indented literal lines */
+static void man_examples(FILE *out, const char *text)
+{
+    fprintf(out, ".SH EXAMPLES\n");
+    int literal = 0, para = 1;
+    for (const char *l = text; *l;) {
+        size_t len = strcspn(l, "\n");
+        char line[1024];
+        snprintf(line, sizeof line, "%.*s", (int)(len < sizeof line ? len : sizeof line - 1), l);
+        int comment = line[0] == '#';
+        if (!len || comment) {
+            if (literal)
+                fprintf(out, ".fi\n.RE\n"), literal = 0;
+            if (!len)
+                para = 1;
+            else {
+                char *words = line + (line[1] == ' ' ? 2 : 1);
+                if (para) {
+                    fprintf(out, ".PP\n"), para = 0;
+                    words[0] = (char)toupper((unsigned char)words[0]);
+                }
+                roff_text(out, words);
+                fputc('\n', out);
+            }
+        } else {
+            if (!literal)
+                fprintf(out, ".RS 4\n.nf\n"), literal = 1;
+            roff_text(out, line);
+            fputc('\n', out);
+            para = 1;
+        }
+        l += len + (l[len] == '\n');
+    }
+    if (literal)
+        fprintf(out, ".fi\n.RE\n");
 }
 
 void cli_print_man(const cli_command *cmd, const char *version, FILE *out)
@@ -171,6 +217,8 @@ void cli_print_man(const cli_command *cmd, const char *version, FILE *out)
         roff_text(out, o->help);
         fprintf(out, "\n");
     }
+    if (cmd->examples && cmd->examples[0])
+        man_examples(out, cmd->examples);
     fprintf(out, ".SH EXIT STATUS\n0 on success, 1 on bad usage, 2 on bad input data, with a "
                  "one\\-line message naming the file and the problem.\n"
                  ".SH SEE ALSO\n.BR mimas (1)\n");

@@ -33,6 +33,10 @@ typedef struct cli_command {
     size_t noptions;
     int reads_inputs;         /* also takes the input options (cli_inputs) */
     int (*run)(const struct cli_command *cmd, int argc, char **argv);
+    /* Shell lines for the EXAMPLES of --help and the man page (NULL: none):
+     * "# " lines explain, the others are commands; a blank line separates
+     * examples.  tests/cli/examples.test runs them. */
+    const char *examples;
 } cli_command;
 
 /* Called for every option found: opt is an index into cmd->options, arg its

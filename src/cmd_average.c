@@ -354,4 +354,18 @@ const cli_command cmd_average = {
     sizeof options / sizeof options[0],
     1,
     run,
+    "# the fields of a ring shear cell on an r-z grid, averaged over t >= 5 s with\n"
+    "# standard errors, the glued wall particles (type 2) left out: the field file for\n"
+    "# mimas shearband and mimas rheology, and the same as a table\n"
+    "mimas average run.h5 --grid r=0.0147:0.11:39,z=0:0.038:20 --weight bins \\\n"
+    "    --from 5 --exclude-types 2 --errors -o fields.h5 --tsv fields.tsv\n"
+    "\n"
+    "# a vertical profile of three fields by a Gaussian of width 1 mm, to standard output\n"
+    "mimas average run.h5 --grid z=0:0.038:38 --weight gauss:w=0.001 --fields nu,v_z,p\n"
+    "\n"
+    "# the whole box as one cell\n"
+    "mimas average run.h5 --grid none --weight bins --fields nu,stress,p\n"
+    "\n"
+    "# every field with its unit and definition\n"
+    "mimas average --list-fields",
 };

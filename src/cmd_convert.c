@@ -95,4 +95,8 @@ const cli_command cmd_convert = {
     sizeof options / sizeof options[0],
     1,
     run,
+    "# a LIGGGHTS run with its contact dumps into one native file (docs/format.md)\n"
+    "K=pos,vel,id,force,force_normal,force_tangential,torque,torque_normal,torque_tangential,history,contactArea,delta,contactPoint\n"
+    "mimas convert 'dump.*.atom.gz' --contacts 'dump.*.pgl.gz' --contact-columns $K -o run.h5\n"
+    "mimas info run.h5",
 };

@@ -171,4 +171,15 @@ const cli_command cmd_rheology = {
     sizeof options / sizeof options[0],
     0,
     run,
+    "# yield line, mu(I) and viscosity laws with the shear stress and shear rate of\n"
+    "# Uhlig (2012), and the plots wet.yield.png, wet.mu_I.png, wet.eta.png\n"
+    "mimas average run.h5 --grid r=0.0147:0.11:39,z=0:0.038:20 --weight bins --from 5 \\\n"
+    "    --exclude-types 2 -o fields.h5\n"
+    "mimas rheology fields.h5 --definition luding --plot wet\n"
+    "\n"
+    "# the shear-rate controlled regime only (p > 250 Pa), into a file\n"
+    "mimas rheology fields.h5 --definition luding --p-range 250: -o windows.tsv\n"
+    "\n"
+    "# one number: the slope of the yield line and its error\n"
+    "mimas rheology fields.h5 | awk '$1 == \"yield\" && $2 == \"zeta\" { print $3, $4 }'",
 };

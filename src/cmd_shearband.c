@@ -248,4 +248,15 @@ const cli_command cmd_shearband = {
     sizeof options / sizeof options[0],
     1,
     run,
+    "# the band of a ring shear cell turning at Omega = 2 pi 0.01 rad/s, from the field\n"
+    "# file of mimas average, with Fenistein and van Hecke's prediction for a split radius\n"
+    "# of 0.085 m and a fill height of 0.038 m, and a picture; the layers that could be fitted\n"
+    "mimas average run.h5 --grid r=0.0147:0.11:39,z=0:0.038:20 --weight bins --from 5 \\\n"
+    "    --exclude-types 2 -o fields.h5\n"
+    "mimas shearband fields.h5 --omega 0.0628319 --fenistein 0.085,0.038 --plot band.png \\\n"
+    "    | awk '$NF == \"ok\"'\n"
+    "\n"
+    "# straight from the particles (the r-z grid it chooses is said on standard error),\n"
+    "# with the four-parameter profile\n"
+    "mimas shearband run.h5 --omega 0.0628319 --from 5 --model 4",
 };

@@ -128,4 +128,23 @@ const cli_command cmd_simulate = {
     sizeof options / sizeof options[0],
     0,
     run,
+    "# a complete scenario file: every key with its default, unit and meaning\n"
+    "mimas simulate --print-defaults ringshear >ringshear.ini\n"
+    "\n"
+    "# a small periodic box of 100 particles for 0.01 s (the keys not given keep\n"
+    "# their defaults), written every 1000 steps\n"
+    "cat >gas.ini <<EOF\n"
+    "[scenario]\n"
+    "type = box\n"
+    "[run]\n"
+    "output_every = 1000\n"
+    "[box]\n"
+    "count = 100\n"
+    "time = 0.01\n"
+    "EOF\n"
+    "mimas simulate gas.ini -o gas.h5 -q\n"
+    "\n"
+    "# stop after 1000 steps (with a checkpoint), then continue bit for bit\n"
+    "mimas simulate gas.ini -o gas.h5 --stop-at 1000 -q\n"
+    "mimas simulate gas.ini -o gas.h5 --resume -q",
 };

@@ -212,4 +212,16 @@ const cli_command cmd_voronoi = {
     sizeof options / sizeof options[0],
     1,
     run,
+    "# per-particle radical cells of a ring shear cell bounded by its walls (the inner and\n"
+    "# the outer cylinder, the bottom) and cut 4 mm about each particle at the free surface,\n"
+    "# stored with the frames; then mapped onto an r-z grid\n"
+    "mimas voronoi run.h5 --radical --walls cylinder:0.0147:inner,cylinder:0.11,plane:z:0 \\\n"
+    "    --max-extent 0.004 --exclude-types 2 -o run-voro.h5\n"
+    "mimas average run-voro.h5 --grid r=0.0147:0.11:39,z=0:0.038:20 --weight voronoi \\\n"
+    "    --from 5 --exclude-types 2 --fields nu\n"
+    "\n"
+    "# a periodic LIGGGHTS box with its contacts: cells and per-particle stresses as a table\n"
+    "K=pos,vel,id,force,force_normal,force_tangential,torque,torque_normal,torque_tangential,history,contactArea,delta,contactPoint\n"
+    "mimas voronoi 'dump.*.atom.gz' --contacts 'dump.*.pgl.gz' --contact-columns $K \\\n"
+    "    --tsv cells.tsv",
 };
