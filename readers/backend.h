@@ -21,6 +21,8 @@ typedef struct reader_backend {
     int (*next)(void *state, mimas_frame *f, mimas_error *err);
     size_t (*skipped)(void *state); /* may be NULL */
     void (*close)(void *state);
+    /* frames the inputs hold, when the format says (0: unknown); may be NULL */
+    size_t (*total)(void *state);
 } reader_backend;
 
 /* Expands '*' patterns in a list of file names (sorted matches); names

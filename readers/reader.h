@@ -44,6 +44,9 @@ const char *mimas_reader_format(const mimas_reader *r);
 /* Frames dropped so far because their contact data were missing
  * (only with allow_missing_contacts). */
 size_t mimas_reader_skipped(const mimas_reader *r);
+/* The number of frames the inputs hold, when the format records it (native
+ * files: counted at open), else 0 (dumps are not read ahead). */
+size_t mimas_reader_total(const mimas_reader *r);
 void mimas_reader_close(mimas_reader *r);
 
 #ifdef __cplusplus

@@ -383,29 +383,89 @@ static double seconds(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
+void cli_progress_begin(cli_progress *p, int quiet)
+{
+    memset(p, 0, sizeof *p);
+    p->on = !quiet && isatty(STDERR_FILENO);
+    p->start = p->last = seconds();
+}
+
 void cli_progress_start(cli_progress *p, const cli_inputs *in)
 {
-    p->on = !in->quiet && isatty(STDERR_FILENO);
-    p->last = seconds();
+    cli_progress_begin(p, in->quiet);
+}
+
+void cli_progress_total(cli_progress *p, const mimas_reader *r)
+{
+    p->total = mimas_reader_total(r);
+}
+
+/* 1 if a line is due now: the first update, then every half second */
+static int progress_due(cli_progress *p)
+{
+    if (!p->on)
+        return 0;
+    double now = seconds();
+    if (p->shown && now - p->last < 0.5)
+        return 0;
+    p->shown = 1;
+    p->last = now;
+    return 1;
+}
+
+/* "45 s", "3 min 05 s", "2 h 05 min" */
+static void duration_text(double s, char *buf, size_t len)
+{
+    if (!(s >= 0) || s > 3.6e8)
+        snprintf(buf, len, "?");
+    else if (s < 59.5)
+        snprintf(buf, len, "%.0f s", s < 1 ? 1 : s);
+    else if (s < 3599.5)
+        snprintf(buf, len, "%d min %02d s", (int)(s + 0.5) / 60, (int)(s + 0.5) % 60);
+    else
+        snprintf(buf, len, "%d h %02d min", (int)(s + 30) / 3600, (int)(s + 30) % 3600 / 60);
+}
+
+static void progress_line(cli_progress *p, const cli_command *cmd, const char *what,
+                          double done, double total, double left, const char *detail)
+{
+    char text[32];
+    if (left < 0)
+        left = done > 0 ? (seconds() - p->start) * (total - done) / done : -1;
+    duration_text(left, text, sizeof text);
+    fprintf(stderr, "\r\033[Kmimas %s: %s %.0f/%.0f (%.0f %%), %s, %s left", cmd->name, what,
+            done, total, total > 0 ? 100 * done / total : 0, detail, text);
+    fflush(stderr);
+}
+
+void cli_progress_work(cli_progress *p, const cli_command *cmd, const char *what, double done,
+                       double total, double left, const char *detail)
+{
+    if (progress_due(p))
+        progress_line(p, cmd, what, done, total, left, detail);
 }
 
 void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, long long step,
                         double time)
 {
-    if (!p->on)
+    if (!progress_due(p))
         return;
-    double now = seconds();
-    if (now - p->last < 0.5)
+    char detail[96];
+    if (isnan(time))
+        snprintf(detail, sizeof detail, "step %lld", step);
+    else
+        snprintf(detail, sizeof detail, "step %lld, time %g s", step, time);
+    if (p->total >= frames && p->total > 0) {
+        progress_line(p, cmd, "frame", (double)frames, (double)p->total, -1, detail);
         return;
-    p->last = now;
-    fprintf(stderr, "\rmimas %s: %zu frames (step %lld, time %g)   ", cmd->name, frames, step,
-            time);
+    }
+    fprintf(stderr, "\r\033[Kmimas %s: %zu frames (%s)", cmd->name, frames, detail);
     fflush(stderr);
 }
 
 void cli_progress_done(cli_progress *p)
 {
-    if (p->on)
+    if (p->on && p->shown)
         fputs("\r\033[K", stderr);
 }
 

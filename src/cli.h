@@ -61,15 +61,29 @@ void cli_print_man(const cli_command *cmd, const char *version, FILE *out);
 int cli_fail(const cli_command *cmd, int status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 /* A progress line on standard error, only when it is a terminal and not
- * quiet, at most twice a second: "mimas CMD: N frames (step S, time T)".
- * cli_progress_done ends the line. */
+ * quiet: at the first update, then at most twice a second.  With a known
+ * total it says how far and how long is left, "mimas CMD: frame 120/500
+ * (24 %), step S, time T s, 1 min 20 s left"; else "mimas CMD: 120 frames
+ * (step S, time T s)".  cli_progress_done erases the line. */
 typedef struct cli_progress {
-    int on;
-    double last;
+    int on, shown;
+    double start, last;
+    size_t total;   /* frames the input holds (0: unknown) */
 } cli_progress;
+/* For commands that read inputs (quiet from -q). */
 void cli_progress_start(cli_progress *p, const cli_inputs *in);
+/* For the others. */
+void cli_progress_begin(cli_progress *p, int quiet);
+/* The total from the reader, when its format knows it (native files). */
+void cli_progress_total(cli_progress *p, const mimas_reader *r);
+/* After each frame read (frames: read so far, used or not). */
 void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, long long step,
                         double time);
+/* Any work of known size: "mimas CMD: WHAT done/total (P %), DETAIL, T left";
+ * left: the seconds left if the caller knows them better (< 0: from the
+ * time since cli_progress_begin and done/total). */
+void cli_progress_work(cli_progress *p, const cli_command *cmd, const char *what, double done,
+                       double total, double left, const char *detail);
 void cli_progress_done(cli_progress *p);
 
 /* A table written to standard output, or to a file under a temporary name

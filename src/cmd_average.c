@@ -276,7 +276,10 @@ static int run(const cli_command *cmd, int argc, char **argv)
     int header_done = 0;
     cli_progress prog;
     cli_progress_start(&prog, &in);
+    cli_progress_total(&prog, r);
+    size_t nread = 0;
     while (!status && (status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
+        cli_progress_frame(&prog, cmd, ++nread, (long long)f.step, f.time);
         int take = cli_window_take(&a.window, &f, argv[first], &err);
         if (take < 0) {
             status = MIMAS_EUSAGE;
@@ -285,7 +288,6 @@ static int run(const cli_command *cmd, int argc, char **argv)
         if (!take)
             continue;
         status = mimas_average_add(avg, &f, &err);
-        cli_progress_frame(&prog, cmd, mimas_average_frames(avg), (long long)f.step, f.time);
         if (!status && one) {
             mimas_average_reset(one);
             status = mimas_average_add(one, &f, &err);

@@ -59,6 +59,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     rc = mimas_writer_open(&w, a.output, &o, &err);
     cli_progress prog;
     cli_progress_start(&prog, &in);
+    cli_progress_total(&prog, r);
     while (!rc && (rc = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
         rc = mimas_writer_append(w, &f, &err);
         cli_progress_frame(&prog, cmd, mimas_writer_frames(w), (long long)f.step, f.time);

@@ -104,7 +104,10 @@ static int average_input(const band_args *a, const cli_inputs *in, mimas_reader 
     mimas_frame_init(&f);
     cli_progress prog;
     cli_progress_start(&prog, in);
+    cli_progress_total(&prog, r);
+    size_t nread = 0;
     while (!status && (status = mimas_reader_next(r, &f, err)) == MIMAS_OK) {
+        cli_progress_frame(&prog, a->cmd, ++nread, (long long)f.step, f.time);
         int take = cli_window_take(&w, &f, input, err);
         if (take < 0)
             status = MIMAS_EUSAGE;
@@ -123,9 +126,6 @@ static int average_input(const band_args *a, const cli_inputs *in, mimas_reader 
             status = mimas_average_add(avg, &f, err);
         if (status && status != MIMAS_EIO)
             mimas_error_prefix(err, "%s: step %lld", input, (long long)f.step);
-        if (avg)
-            cli_progress_frame(&prog, a->cmd, mimas_average_frames(avg), (long long)f.step,
-                               f.time);
     }
     cli_progress_done(&prog);
     mimas_frame_free(&f);

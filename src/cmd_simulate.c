@@ -3,11 +3,9 @@
  * in the native format. */
 #include <config.h>
 
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -52,16 +50,19 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     }
 }
 
+typedef struct progress_ctx {
+    const cli_command *cmd;
+    cli_progress line;
+} progress_ctx;
+
 static void show_progress(void *ctx, const sim_progress *p)
 {
-    (void)ctx;
-    double eta = p->eta;
-    fprintf(stderr, "\rmimas simulate: step %lld/%lld  t = %.4g s  %.0f steps/s  "
-                    "%.3g particle-steps/s  %zu frames  ETA %02d:%02d:%02d ",
-            (long long)p->step, (long long)p->total, p->time, p->steps_per_s,
-            p->steps_per_s * (double)p->particles, p->frames, (int)(eta / 3600),
-            (int)fmod(eta / 60, 60), (int)fmod(eta, 60));
-    fflush(stderr);
+    progress_ctx *c = ctx;
+    char detail[160];
+    snprintf(detail, sizeof detail, "t = %.4g s, %.0f steps/s, %.3g particle-steps/s, %zu frames",
+             p->time, p->steps_per_s, p->steps_per_s * (double)p->particles, p->frames);
+    cli_progress_work(&c->line, c->cmd, "step", (double)p->step, (double)p->total, p->eta,
+                      detail);
 }
 
 static int run(const cli_command *cmd, int argc, char **argv)
@@ -99,11 +100,12 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if ((rc = sim_scenario_load(&sc, argv[first], &err)))
         return cli_fail(cmd, mimas_exit_status(rc), "%s", err.msg);
     char *line = cli_command_line(argc, argv);
-    int tty = !a.quiet && isatty(STDERR_FILENO);
-    sim_run_options o = {a.output, a.resume, a.stop_at, line, tty ? show_progress : NULL, NULL};
+    progress_ctx pc = {cmd, {0}};
+    cli_progress_begin(&pc.line, a.quiet);
+    sim_run_options o = {a.output, a.resume, a.stop_at, line,
+                         pc.line.on ? show_progress : NULL, &pc};
     rc = sim_run(&sc, &o, &err);
-    if (tty)
-        fputc('\n', stderr);
+    cli_progress_done(&pc.line);
     free(line);
     if (rc)
         return cli_fail(cmd, mimas_exit_status(rc), "%s", err.msg);

@@ -151,6 +151,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     mimas_frame_init(&f);
     cli_progress prog;
     cli_progress_start(&prog, &in);
+    cli_progress_total(&prog, r);
     size_t frames = 0;
     while (!status && (status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
         status = mimas_voronoi_frame(vor, &f, &err);
