@@ -168,6 +168,8 @@ static void free_cells(mimas_rheology_cells *c)
     free(c->mu);
     free(c->I);
     free(c->eta);
+    free(c->p_sem);
+    free(c->tau_sem);
     memset(c, 0, sizeof *c);
 }
 
@@ -189,17 +191,19 @@ static int select_cells(const mimas_fieldset *fs, const mimas_rheology_options *
     int rc = MIMAS_OK;
     for (int k = 0; k < 5; k++)
         f[k] = malloc(cells * sizeof *f[k]);
-    double **cols[6] = {&c->p, &c->tau, &c->shear_rate, &c->mu, &c->I, &c->eta};
-    for (int k = 0; k < 6; k++)
+    double *sem[2] = {malloc(cells * sizeof *sem[0]), malloc(cells * sizeof *sem[1])};
+    double **cols[8] = {&c->p,   &c->tau, &c->shear_rate, &c->mu,
+                        &c->I,   &c->eta, &c->p_sem,      &c->tau_sem};
+    for (int k = 0; k < 8; k++)
         *cols[k] = malloc((cells ? cells : 1) * sizeof **cols[k]);
     for (int k = 0; k < 5; k++)
-        if (!f[k])
+        if (!f[k] || (k < 2 && !sem[k]))
             rc = mimas_error_set(err, MIMAS_EIO, "out of memory");
-    for (int k = 0; k < 6; k++)
+    for (int k = 0; k < 8; k++)
         if (!*cols[k])
             rc = mimas_error_set(err, MIMAS_EIO, "out of memory");
     for (int k = 0; !rc && k < 5; k++)
-        rc = mimas_fieldset_read(fs, need[k], f[k], NULL, err);
+        rc = mimas_fieldset_read(fs, need[k], f[k], k < 2 ? sem[k] : NULL, err);
     c->n = 0;
     for (size_t i = 0; !rc && i < cells; i++) {
         double p = f[0][i], tau = f[1][i], sr = f[2][i], I = f[3][i], sg = f[4][i];
@@ -209,6 +213,8 @@ static int select_cells(const mimas_fieldset *fs, const mimas_rheology_options *
         size_t k = c->n++;
         c->p[k] = p;
         c->tau[k] = tau;
+        c->p_sem[k] = sem[0][i];
+        c->tau_sem[k] = sem[1][i];
         c->shear_rate[k] = sr;
         /* mu = tau/p, eta = tau/shear rate as in docs/fields.md; I scales
          * with the shear rate (I = shear rate d sqrt(rho_p/p)) */
@@ -218,6 +224,8 @@ static int select_cells(const mimas_fieldset *fs, const mimas_rheology_options *
     }
     for (int k = 0; k < 5; k++)
         free(f[k]);
+    free(sem[0]);
+    free(sem[1]);
     if (rc)
         free_cells(c);
     return rc;

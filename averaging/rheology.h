@@ -49,6 +49,7 @@ void mimas_rheology_options_default(mimas_rheology_options *o);
 typedef struct mimas_rheology_cells {
     size_t n;
     double *p, *tau, *shear_rate, *mu, *I, *eta;
+    double *p_sem, *tau_sem;   /* standard errors over frames (NaN: none in the file) */
 } mimas_rheology_cells;
 
 /* ---- the single analyses (unweighted; errors scaled by the scatter) ---- */

@@ -130,6 +130,8 @@ char *cli_command_line(int argc, char **argv);
 /* Parses a number; returns 0 on success. */
 int cli_parse_double(const char *s, double *v);
 int cli_parse_long(const char *s, long *v);
+/* "LO:HI", "LO:" or ":HI" (bounds left out are -inf, +inf; LO < HI); 0 on success. */
+int cli_parse_range(const char *arg, double *lo, double *hi);
 /* --threads N (1..1024) into *threads; prints the usage error and returns 1 otherwise. */
 int cli_parse_threads(const cli_command *cmd, const char *arg, int *threads);
 

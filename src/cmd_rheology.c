@@ -36,26 +36,6 @@ typedef struct rheology_args {
     const char *plot, *output;
 } rheology_args;
 
-/* "LO:HI", "LO:", ":HI": bounds left out are open. */
-static int parse_range(const char *arg, double *lo, double *hi)
-{
-    const char *colon = strchr(arg, ':');
-    if (!colon)
-        return -1;
-    char a[64], b[64];
-    size_t la = (size_t)(colon - arg), lb = strlen(colon + 1);
-    if (la >= sizeof a || lb >= sizeof b)
-        return -1;
-    memcpy(a, arg, la);
-    a[la] = '\0';
-    memcpy(b, colon + 1, lb + 1);
-    *lo = -INFINITY;
-    *hi = INFINITY;
-    if ((la && cli_parse_double(a, lo)) || (lb && cli_parse_double(b, hi)))
-        return -1;
-    return *hi > *lo ? 0 : -1;
-}
-
 static int on_option(void *ctx, size_t opt, const char *arg)
 {
     rheology_args *a = ctx;
@@ -66,7 +46,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
             return cli_fail(a->cmd, 1, "--min-shear-rate needs a rate >= 0, not '%s'", arg);
         return 0;
     case O_P_RANGE:
-        if (parse_range(arg, &a->o.p_lo, &a->o.p_hi))
+        if (cli_parse_range(arg, &a->o.p_lo, &a->o.p_hi))
             return cli_fail(a->cmd, 1, "--p-range needs LO:HI with LO < HI (either may be left "
                             "out), not '%s'", arg);
         return 0;

@@ -220,8 +220,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (!status)
         status = mimas_band_analyse(fs, &a.o, &b, &err);
     mimas_fieldset_close(fs);
+    mimas_band_plot_options po = {a.fenistein ? a.rs : 0, a.fenistein ? a.h : 0};
     if (!status && a.plot)
-        status = mimas_band_plot(b, a.plot, &err);
+        status = mimas_band_plot(b, &po, a.plot, &err);
     band_table t = {&a, b};
     if (!status)
         status = cli_write_table(a.output, write_table, &t, &err);

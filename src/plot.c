@@ -41,6 +41,61 @@ void mimas_plot_quote(const char *s, char *buf, size_t len)
     buf[k] = '\0';
 }
 
+void mimas_plot_literal(const char *text, char *buf, size_t len)
+{
+    size_t k = 0;
+    for (; *text && k + 3 < len; text++) {
+        if (strchr("_^@&{}~\\", *text))
+            buf[k++] = '\\';
+        buf[k++] = *text;
+    }
+    if (len)
+        buf[k < len ? k : len - 1] = '\0';
+}
+
+/* x y z r, phi as φ: the components of a vector or tensor field */
+static void components(const char *c, char *buf, size_t len)
+{
+    size_t k = 0;
+    for (; *c && k + 3 < len; c++) {
+        if (!strncmp(c, "phi", 3)) {
+            k += (size_t)snprintf(buf + k, len - k, "φ");
+            c += 2;
+        } else
+            buf[k++] = *c;
+    }
+    buf[k < len ? k : len - 1] = '\0';
+}
+
+void mimas_plot_symbol(const char *field, char *buf, size_t len)
+{
+    static const struct {
+        const char *name, *symbol; /* symbol: components become its subscript */
+    } table[] = {
+        {"shear_rate_luding", "γ̇_{L}"}, {"shear_rate", "γ̇"}, {"tau_phi", "τ_{φ}"},
+        {"Z_nr", "Z_{nr}"}, {"kstress", "σ^{k}"}, {"cstress", "σ^{c}"}, {"stress", "σ"},
+        {"fabric", "F"}, {"wall_force", "f^{w}"}, {"rho", "ρ"}, {"nu", "ν"}, {"omega", "ω"},
+        {"tau", "τ"}, {"mu", "μ"}, {"eta", "η"}, {"v", "v"}, {"n", "n"}, {"p", "p"},
+        {"T", "T"}, {"Z", "Z"}, {"d", "d"}, {"I", "I"},
+    };
+    for (size_t k = 0; k < sizeof table / sizeof table[0]; k++) {
+        size_t n = strlen(table[k].name);
+        if (strncmp(field, table[k].name, n) != 0)
+            continue;
+        if (field[n] == '\0') {
+            snprintf(buf, len, "%s", table[k].symbol);
+            return;
+        }
+        if (field[n] == '_' && field[n + 1] && !strchr(table[k].symbol, '_')) {
+            char comp[32];
+            components(field + n + 1, comp, sizeof comp);
+            snprintf(buf, len, "%s_{%s}", table[k].symbol, comp);
+            return;
+        }
+    }
+    mimas_plot_literal(field, buf, len);
+}
+
 static void path_in(const mimas_plot *p, const char *name, char *buf, size_t len)
 {
     snprintf(buf, len, "%s/%s", p->dir, name);
@@ -189,7 +244,7 @@ int mimas_plot_render(mimas_plot *p, int width, int height, const char *script, 
     if (fp) {
         mimas_plot_quote(p->tmp, q_out, sizeof q_out);
         mimas_plot_quote(p->dir, q_dir, sizeof q_dir);
-        fprintf(fp, "set terminal pngcairo size %d,%d noenhanced font ',10'\n"
+        fprintf(fp, "set encoding utf8\nset terminal pngcairo size %d,%d enhanced font ',10'\n"
                     "set output %s\ndatadir = %s\n%s\nunset output\n",
                 width, height, q_out, q_dir, script);
         if (fclose(fp) != 0)

@@ -32,6 +32,15 @@ int mimas_plot_commit(mimas_plot *p, mimas_error *err);
 void mimas_plot_abort(mimas_plot *p);
 /* s as a gnuplot single-quoted string ('' for each quote) into buf. */
 void mimas_plot_quote(const char *s, char *buf, size_t len);
+/* The symbol of a field of docs/fields.md in gnuplot's enhanced text (the
+ * terminal is enhanced, UTF-8): "nu" -> "ν", "stress_rphi" -> "σ_{rφ}",
+ * "shear_rate" -> "γ̇", "tau_phi" -> "τ_{φ}"; other names as they are, with
+ * the characters enhanced text would interpret escaped.  For single-quoted
+ * strings in scripts. */
+void mimas_plot_symbol(const char *field, char *buf, size_t len);
+/* text with the characters of enhanced text (_ ^ @ & { } ~) escaped, for
+ * single-quoted strings in scripts (a file name in a title). */
+void mimas_plot_literal(const char *text, char *buf, size_t len);
 
 #ifdef __cplusplus
 }
