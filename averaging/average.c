@@ -331,7 +331,7 @@ static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
 }
 
 /* A wall contact (or a contact with an excluded particle): f on the particle
- * at r, the segment from the contact point c to r (PHYSICS 1, 6), and the
+ * at r, the segment from the contact point c to r (docs/theory.md §1, §6), and the
  * force as a wall force density at c. */
 static void deposit_wall_contact(const mimas_deposit *dp, const mimas_grid *g, double *S,
                                  const mimas_box *box, const double r[3], const double c[3],
@@ -384,7 +384,7 @@ static void deposit_frame(const mimas_average *a, const mimas_frame *f, const mi
         if (!a->keep[i] && !a->keep[j])
             continue;
         if (a->keep[i] && a->keep[j]) {
-            /* f_ij (x) (r_i - r_j), the branch by the minimum image (PHYSICS 1) */
+            /* f_ij (x) (r_i - r_j), the branch by the minimum image (docs/theory.md §1) */
             double b[3] = {p->pos[i][0] - p->pos[j][0], p->pos[i][1] - p->pos[j][1],
                            p->pos[i][2] - p->pos[j][2]};
             mimas_box_min_image(&f->box, b);

@@ -67,7 +67,7 @@ static const double gl8_x[4] = {0.1834346424956498, 0.5255324099163290, 0.796666
 static const double gl8_w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
                                 0.1012285362903763};
 
-/* The kernel averaged over the azimuth (PHYSICS 6, cylindrical grids without
+/* The kernel averaged over the azimuth (docs/theory.md §6, cylindrical grids without
  * phi cells): at the ring of radius r, height z about the axis, for a
  * particle at axis-frame position x, (1/pi) int_0^tm phi(D(t)) dt with
  * D^2 = r^2 + rho^2 - 2 r rho cos t + (z - x_z)^2 and tm where D reaches the

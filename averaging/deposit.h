@@ -1,5 +1,5 @@
 /* Where a particle, a point or a contact's branch segment goes on a grid, and
- * with which weight (PHYSICS 6): for each cell it touches, the callback gets
+ * with which weight (docs/theory.md §6): for each cell it touches, the callback gets
  * the cell and the weight per unit volume, so that summing weight times cell
  * volume over the cells gives 1 (bins) or the coarse-graining integral
  * (Gaussian).  Periodic boxes contribute through the images of the object

@@ -1,7 +1,7 @@
 /* The fields of mimas average: primary sums per cell (what is deposited and
  * time-averaged) and the fields derived from them, described once in a table
  * (name, unit, meaning) that feeds the TSV header and docs/fields.md
- * (DESIGN.md: libvips-style description).  PHYSICS 1 and 6 give the
+ * (as libvips describes its operations).  docs/theory.md §1 and §6 give the
  * definitions; stress is compression-positive. */
 #ifndef MIMAS_FIELDS_H
 #define MIMAS_FIELDS_H
@@ -46,7 +46,7 @@ typedef enum mimas_fields_mode {
  * centre's radius (cylindrical grids).  Undefined values (velocity of an
  * empty cell, mu where p <= 0, ...) are NaN, as docs/fields.md says.  The
  * strain-rate columns are left NaN: they need the neighbouring cells
- * (mimas_fields_strain).  Shepard's ratio of sums (002 eq. 2.27) defines
+ * (mimas_fields_strain).  Shepard's ratio of sums (Bierwisch 2009, eq. 2.27) defines
  * only means of per-particle values (velocity as sum v phi / sum phi, Z, d,
  * the strain rates); the densities and stresses are NaN.  Voronoi: n, rho
  * and nu per total cell volume (nu = sum V_p / sum V_cell), the stress the

@@ -7,23 +7,23 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* 000 Tables 4.6 and 4.7: small windows of shear rate (1/s) and of I */
-static const mimas_rheology_window rate_windows_000[] = {
+/* Uhlig (2012), Tables 4.6 and 4.7: small windows of shear rate (1/s) and of I */
+static const mimas_rheology_window rate_windows_uhlig[] = {
     {0.02, 0.025}, {0.03, 0.035}, {0.05, 0.055}, {0.07, 0.075}, {0.11, 0.12}};
-static const mimas_rheology_window I_windows_000[] = {
+static const mimas_rheology_window I_windows_uhlig[] = {
     {1e-4, 1.25e-4}, {2e-4, 2.2e-4}, {4e-4, 4.5e-4}, {7e-4, 8e-4}, {1e-3, 1.2e-3}};
 
 void mimas_rheology_options_default(mimas_rheology_options *o)
 {
     memset(o, 0, sizeof *o);
     o->definition = MIMAS_RHEOLOGY_GENERAL;
-    o->min_shear_rate = 0.02; /* 000 Sec. 4.2: the yield line holds above ~0.02 1/s */
+    o->min_shear_rate = 0.02; /* Uhlig (2012), Sec. 4.2: the yield line holds above ~0.02 1/s */
     o->p_lo = 0;
     o->p_hi = INFINITY;
-    o->rate_windows = rate_windows_000;
-    o->nrate_windows = sizeof rate_windows_000 / sizeof rate_windows_000[0];
-    o->I_windows = I_windows_000;
-    o->nI_windows = sizeof I_windows_000 / sizeof I_windows_000[0];
+    o->rate_windows = rate_windows_uhlig;
+    o->nrate_windows = sizeof rate_windows_uhlig / sizeof rate_windows_uhlig[0];
+    o->I_windows = I_windows_uhlig;
+    o->nI_windows = sizeof I_windows_uhlig / sizeof I_windows_uhlig[0];
 }
 
 int mimas_rheology_parse_windows(const char *spec, mimas_rheology_window *w, size_t max,
@@ -320,7 +320,7 @@ int mimas_rheology_analyse(const mimas_fieldset *fs, const mimas_rheology_option
     static const char *const line[] = {"tau0", "zeta"}, *const jop[] = {"mu_s", "mu_2", "I0"},
                              *const power[] = {"k", "n"};
     push_fit(r, "yield", &r->yield, line, c->p, c->tau, ANY);
-    /* the friction angle psi = asin(zeta) (000 Table 4.5), in degrees */
+    /* the friction angle psi = asin(zeta) (Uhlig 2012, Table 4.5), in degrees */
     const mimas_fit *y = &r->yield;
     double zeta = y->p[1], deg = 180.0 / M_PI;
     int defined = y->status == MIMAS_FIT_OK && fabs(zeta) <= 1;

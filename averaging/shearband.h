@@ -1,4 +1,4 @@
-/* The shear band of a split-bottom ring shear cell (PHYSICS 7, 000 eq. 2.11,
+/* The shear band of a split-bottom ring shear cell (docs/theory.md §7.1; Uhlig 2012, eq. 2.11;
  * Fenistein & van Hecke 2003): per height layer, the angular velocity
  * profile omega(r)/Omega fitted by an error function,
  *   model 2:  0.5 + 0.5 erf((r - Rc)/W)

@@ -1,6 +1,6 @@
 /* Coarse-graining weights of mimas average (--weight): Heaviside bins with
  * exact overlaps, centre-in-cell bins, and the Gaussian coarse-graining
- * function with its exact line integral (PHYSICS 6). */
+ * function with its exact line integral (docs/theory.md §6). */
 #ifndef MIMAS_WEIGHT_H
 #define MIMAS_WEIGHT_H
 
@@ -15,7 +15,7 @@ typedef enum mimas_weight_kind {
     MIMAS_WEIGHT_BINS_CENTER, /* the cell holding the centre (contact point) */
     MIMAS_WEIGHT_GAUSS,       /* normalised Gaussian of width w, cut at cutoff*w */
     MIMAS_WEIGHT_LUCY,        /* Lucy's polynomial of range c */
-    MIMAS_WEIGHT_SHEPARD      /* ratio of Gaussian sums of per-particle values (002 eq. 2.27) */
+    MIMAS_WEIGHT_SHEPARD      /* Shepard's ratio of Gaussian sums (Bierwisch 2009, eq. 2.27) */
 } mimas_weight_kind;
 
 typedef struct mimas_weight {

@@ -1,4 +1,4 @@
-/* mimas average: continuum fields on a grid from any input (PHYSICS 6). */
+/* mimas average: continuum fields on a grid from any input (docs/theory.md §6). */
 #include <config.h>
 
 #include <errno.h>
@@ -346,7 +346,7 @@ const cli_command cmd_average = {
     "continuum fields (density, velocity, stress, fabric, ...) on a grid",
     "[options] INPUT... --grid SPEC --weight SPEC",
     "Coarse-grains particles and contacts onto a Cartesian or cylindrical grid\n"
-    "(PHYSICS 6): number and mass density, solid fraction, velocity, kinetic,\n"
+    "(docs/theory.md §6): number and mass density, solid fraction, velocity, kinetic,\n"
     "contact and total stress (compression positive), pressure, shear stress,\n"
     "stress ratio, granular temperature, coordination number, fabric and wall\n"
     "force density (docs/fields.md).  Time averages are taken of the primary\n"

@@ -1,5 +1,5 @@
 /* mimas rheology: yield line, mu(I), viscosity power laws and windowed
- * viscosities from a field file (PHYSICS 7, docs/rheology.md). */
+ * viscosities from a field file (docs/theory.md §7.2, docs/rheology.md). */
 #include <config.h>
 
 #include <math.h>
@@ -18,11 +18,12 @@ static const cli_option options[] = {
     {"p-range", 0, "LO:HI", "and whose pressure is within LO:HI (Pa; either may be left out; "
                             "default 0:)"},
     {"shear-rate-windows", 0, "LO:HI,...", "shear-rate windows for the mean viscosity (default: "
-                                           "those of 000 Table 4.6)"},
+                                           "those of Uhlig (2012), Table 4.6)"},
     {"I-windows", 0, "LO:HI,...", "inertial-number windows for the mean viscosity (default: "
-                                  "those of 000 Table 4.7)"},
+                                  "those of Uhlig (2012), Table 4.7)"},
     {"definition", 0, "general|luding", "general: tau, shear_rate (invariants; default); luding: "
-                                        "tau_phi, shear_rate_luding (000, cylindrical grids)"},
+                                        "tau_phi, shear_rate_luding (Uhlig 2012, cylindrical "
+                                        "grids)"},
     {"plot", 0, "PREFIX", "draw PREFIX.yield.png, PREFIX.mu_I.png and PREFIX.eta.png (gnuplot)"},
     {"output", 'o', "FILE", "write the table to FILE (default: standard output)"},
 };
@@ -145,7 +146,7 @@ const cli_command cmd_rheology = {
     "tau = tau0 + zeta p with psi = asin(zeta), the mu(I) law mu = mu_s +\n"
     "(mu_2 - mu_s)/(1 + I0/I), the power laws eta = k shear_rate^n and\n"
     "eta = k I^n, and the mean viscosity in windows of shear rate and of I\n"
-    "(PHYSICS 7, 000 Sec. 4.2).  Writes one long table, a row per parameter or\n"
+    "(docs/theory.md §7.2; Uhlig 2012, Sec. 4.2).  Writes one long table, a row per parameter or\n"
     "window: table parameter value error npts lo hi status (docs/rheology.md).",
     options,
     sizeof options / sizeof options[0],

@@ -1,5 +1,5 @@
 /* mimas shearband: the shear band's centre and width per height layer
- * from erf fits of the angular velocity profile (PHYSICS 7, docs/shearband.md). */
+ * from erf fits of the angular velocity profile (docs/theory.md §7.1, docs/shearband.md). */
 #include <config.h>
 
 #include <math.h>
@@ -240,7 +240,7 @@ const cli_command cmd_shearband = {
     "file of mimas average (omega, or v_phi/r) by omega(r)/OMEGA = 0.5 + 0.5\n"
     "erf((r - Rc)/W) (--model 2) or A + B erf((r - Rc)/W) (--model 4) with GSL's\n"
     "trust-region least squares, weighted by the standard errors when the file\n"
-    "has them (PHYSICS 7).  Raw particle input is first averaged with bins on an\n"
+    "has them (docs/theory.md §7.1).  Raw particle input is first averaged with bins on an\n"
     "r-z grid chosen from the data (the grid is said on standard error).  Writes\n"
     "one row per layer: z Rc Rc_err W W_err chi2 npts [A A_err B B_err]\n"
     "[Rc_fenistein] status; a layer that could not be fitted has nan values and\n"

@@ -1,6 +1,6 @@
 /* mimas voronoi: per-particle Voronoi cells (voro++): volume, local solid
- * fraction, faces, surface flags and per-particle stress (PHYSICS 6, 002
- * Sec. 2.2 and eq. 3.8). */
+ * fraction, faces, surface flags and per-particle stress (docs/theory.md §6;
+ * Bierwisch 2009, Sec. 2.2 and eq. 3.8). */
 #include <config.h>
 
 #include <math.h>

@@ -1,4 +1,4 @@
-/* The mimas data model (DESIGN.md "Data model"): a frame is one snapshot with
+/* The mimas data model (docs/api.md, "Frame"): a frame is one snapshot with
  * its box, particles, particle-particle contacts and particle-wall contacts.
  *
  * Each of the three tables is a struct of arrays, sized per frame and owned by
@@ -64,7 +64,7 @@ typedef struct mimas_particles {
     double (*omega)[3];        /* angular velocity */
     double (*force)[3];
     int32_t (*image)[3];       /* periodic image flags */
-    double *cg;                /* coarse-grain factor alpha (PHYSICS 2.5) */
+    double *cg;                /* coarse-grain factor alpha (docs/theory.md §2.5) */
     double *liquid;            /* liquid content: volume of liquid carried */
     size_t n_extra;
     mimas_extra *extra;
@@ -82,7 +82,7 @@ typedef struct mimas_contacts {
     unsigned present;
     size_t *i, *j;             /* indices into the particle arrays */
     double (*point)[3];        /* contact point */
-    double (*force)[3];        /* force on i exerted by j (PHYSICS 1) */
+    double (*force)[3];        /* force on i exerted by j (docs/theory.md §1) */
     double (*force_n)[3];      /* its normal part */
     double (*force_t)[3];      /* its tangential part */
     double *overlap;           /* R_i + R_j - |r_i - r_j| */
@@ -136,7 +136,7 @@ int mimas_box_is_triclinic(const mimas_box *b);
 double mimas_box_volume(const mimas_box *b);
 /* Rows are the edge vectors a, b, c. */
 void mimas_box_edges(const mimas_box *b, double e[3][3]);
-/* Replaces d by its minimum image along the periodic directions (PHYSICS 1),
+/* Replaces d by its minimum image along the periodic directions (docs/theory.md §1),
  * for orthogonal and triclinic boxes (LAMMPS' convention: the nearest image
  * in fractional coordinates). */
 void mimas_box_min_image(const mimas_box *b, double d[3]);

@@ -1,4 +1,4 @@
-/* Pictures by gnuplot (DESIGN.md: --plot FILE.png): the data go to files
+/* Pictures by gnuplot (the commands' --plot FILE.png): the data go to files
  * in a scratch folder, gnuplot runs a script on them (its messages are
  * kept, not printed), and the PNG is written under a temporary name and
  * renamed into place when complete. */

@@ -106,7 +106,7 @@ int dem_configure(dem_system *s, const sim_scenario *sc, mimas_error *err)
     for (int a = 0; a < SIM_MAX_TYPES; a++)
         for (int b = 0; b < SIM_MAX_TYPES; b++)
             dem_law_make(&s->law[a][b], &sc->contact[a][b], sc->coarse_grain);
-    /* liquid carried by each particle: V_L = D rho_p V_p / rho_f (PHYSICS 2.4) */
+    /* liquid carried by each particle: V_L = D rho_p V_p / rho_f (docs/theory.md §2.4) */
     s->bridges_on = sc->liquid_content > 0;
     double vmax = 0;
     for (size_t k = 0; k < s->n; k++) {
@@ -127,7 +127,7 @@ int dem_configure(dem_system *s, const sim_scenario *sc, mimas_error *err)
                 if (sc_ab > s->bridge_range)
                     s->bridge_range = sc_ab;
             }
-    /* the time-step guard (PHYSICS 3): dt <= t_c/50 for the linear laws */
+    /* the time-step guard (docs/theory.md §3): dt <= t_c/50 for the linear laws */
     if (sc->dt_guard) {
         double mmin = INFINITY;
         for (size_t k = 0; k < s->n; k++)

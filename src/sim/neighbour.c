@@ -1,4 +1,4 @@
-/* Linked cells and Verlet lists (PHYSICS.md 3): particles are sorted by cell,
+/* Linked cells and Verlet lists (docs/theory.md §3): particles are sorted by cell,
  * each pair is found once through a half shell of 13 neighbour cells, the
  * list holds every pair closer than R_i + R_j + skin (+ the longest liquid
  * bridge) and is rebuilt when a particle has moved more than skin/2.  The
