@@ -67,27 +67,65 @@ static size_t drawable(const double *x, const double *y, size_t n, int logx, int
     return k;
 }
 
-/* "[lo:hi]" over the drawable values of x (points, not error bars, decide;
- * a margin keeps them off the frame: 5 %% of the span, or a factor on log axes) */
-static void span(const double *x, const double *y, size_t n, int logx, int logy, char *buf,
-                 size_t len)
+/* The range of the drawable values of x (points, not error bars, decide),
+ * with a margin that keeps them off the frame: 5 % of the span, or a factor
+ * on log axes.  0 if there is none. */
+static int span(const double *x, const double *y, size_t n, int logx, int logy, double *lo,
+                double *hi)
 {
-    double lo = INFINITY, hi = -INFINITY;
+    *lo = INFINITY, *hi = -INFINITY;
     for (size_t i = 0; i < n; i++)
         if (isfinite(x[i]) && isfinite(y[i]) && (!logx || x[i] > 0) && (!logy || y[i] > 0)) {
-            lo = fmin(lo, x[i]);
-            hi = fmax(hi, x[i]);
+            *lo = fmin(*lo, x[i]);
+            *hi = fmax(*hi, x[i]);
         }
-    if (!(lo <= hi)) {
-        snprintf(buf, len, "[*:*]");
-        return;
-    }
+    if (!(*lo <= *hi))
+        return 0;
     if (logx) {
-        double f = hi > lo ? pow(hi / lo, 0.05) : 2;
-        snprintf(buf, len, "[%.9g:%.9g]", lo / f, hi * f);
+        double f = *hi > *lo ? pow(*hi / *lo, 0.05) : 2;
+        *lo /= f, *hi *= f;
     } else {
-        double m = hi > lo ? 0.05 * (hi - lo) : fabs(lo) > 0 ? 0.1 * fabs(lo) : 1;
-        snprintf(buf, len, "[%.9g:%.9g]", lo - m, hi + m);
+        double m = *hi > *lo ? 0.05 * (*hi - *lo) : fabs(*lo) > 0 ? 0.1 * fabs(*lo) : 1;
+        *lo -= m, *hi += m;
+    }
+    return 1;
+}
+
+/* "set xtics (...)" for a log axis: 1, 2, 5 of every decade in [lo, hi]
+ * (only the decades over more than four), so that a short range still has
+ * labelled tics */
+static void log_tics(char axis, double lo, double hi, char *buf, size_t len)
+{
+    size_t k = (size_t)snprintf(buf, len, "set %ctics (", axis);
+    int first = 1, d0 = (int)floor(log10(lo)), d1 = (int)ceil(log10(hi));
+    static const double steps[3] = {1, 2, 5};
+    for (int d = d0; d <= d1 && k + 40 < len; d++)
+        for (int m = 0; m < (d1 - d0 > 4 ? 1 : 3); m++) {
+            double v = steps[m] * pow(10, d);
+            if (v < lo || v > hi)
+                continue;
+            k += (size_t)snprintf(buf + k, len - k, "%s%.3g", first ? "" : ", ", v);
+            first = 0;
+        }
+    snprintf(buf + k, len - k, first ? ")\nset %ctics auto\n" : ")\n", axis);
+}
+
+/* "[x range][y range]" of the drawable cells, and the tics of log axes */
+static void ranges(const double *x, const double *y, size_t n, int logx, int logy, char *buf,
+                   size_t len, char *tics, size_t tlen)
+{
+    double lo[2], hi[2];
+    int ok[2] = {span(x, y, n, logx, logy, &lo[0], &hi[0]),
+                 span(y, x, n, logy, logx, &lo[1], &hi[1])};
+    size_t k = 0, t = 0;
+    tics[0] = '\0';
+    for (int a = 0; a < 2; a++) {
+        if (ok[a])
+            k += (size_t)snprintf(buf + k, len - k, "[%.9g:%.9g]", lo[a], hi[a]);
+        else
+            k += (size_t)snprintf(buf + k, len - k, "[*:*]");
+        if (ok[a] && (a ? logy : logx))
+            log_tics(a ? 'y' : 'x', lo[a], hi[a], tics + t, tlen - t), t = strlen(tics);
     }
 }
 
@@ -128,17 +166,7 @@ static int has_errors(const mimas_rheology_cells *c)
 
 /* Settings every panel shares: points off the frame, a grid, the key below. */
 static const char common[] =
-    "set grid\nset key below Left reverse\nset tics out\nset format '%g'\n";
-
-/* "[x range][y range]" of the drawable cells */
-static void ranges(const double *x, const double *y, size_t n, int logx, int logy, char *buf,
-                   size_t len)
-{
-    char rx[96], ry[96];
-    span(x, y, n, logx, logy, rx, sizeof rx);
-    span(y, x, n, logy, logx, ry, sizeof ry);
-    snprintf(buf, len, "%s%s", rx, ry);
-}
+    "set grid\nset key below Left reverse height 1\nset format '%g'\n";
 
 int mimas_rheology_plot(const mimas_rheology *r, const char *prefix, mimas_error *err)
 {
@@ -146,7 +174,7 @@ int mimas_rheology_plot(const mimas_rheology *r, const char *prefix, mimas_error
     int luding = r->opt.definition == MIMAS_RHEOLOGY_LUDING, errors = has_errors(c);
     const char *tau = luding ? "τ_{φ}" : "τ", *rate = luding ? "γ̇_{L}" : "γ̇";
     char names[3][4200], script[3][8192], labels[1024], curve[1024];
-    char a[64], b[64], d[64], rg[200];
+    char a[64], b[64], d[64], rg[200], tics[512];
     const char *what[3] = {"yield", "mu_I", "eta"};
     for (int k = 0; k < 3; k++)
         snprintf(names[k], sizeof names[k], "%s.%s.png", prefix, what[k]);
@@ -165,7 +193,8 @@ int mimas_rheology_plot(const mimas_rheology *r, const char *prefix, mimas_error
         snprintf(curve, sizeof curve, "%.17g + %.17g*x with lines lw 2 lc rgb 'black' "
                  "title 'τ_0 = %s Pa, ζ = %s (ψ = asin ζ = %s°)'", f->p[0], f->p[1], a, b, d);
     }
-    ranges(c->p, c->tau, c->n, 0, 0, rg, sizeof rg);
+    ranges(c->p, c->tau, c->n, 0, 0, rg, sizeof rg, tics, sizeof tics);
+    strncat(labels, tics, sizeof labels - strlen(labels) - 1);
     panel(script[0], sizeof script[0], labels, drawable(c->p, c->tau, c->n, 0, 0), rg, "1:2",
           ":7:8", "xyerrorbars", errors, curve);
     /* mu against I with the mu(I) law */
@@ -183,7 +212,8 @@ int mimas_rheology_plot(const mimas_rheology *r, const char *prefix, mimas_error
                  "lc rgb 'black' title 'μ_s = %s, μ_2 = %s, I_0 = %s'", f->p[0], f->p[1],
                  f->p[0], f->p[2], a, b, d);
     }
-    ranges(c->I, c->mu, c->n, 1, 0, rg, sizeof rg);
+    ranges(c->I, c->mu, c->n, 1, 0, rg, sizeof rg, tics, sizeof tics);
+    strncat(labels, tics, sizeof labels - strlen(labels) - 1);
     panel(script[1], sizeof script[1], labels, drawable(c->I, c->mu, c->n, 1, 0), rg, "4:3",
           ":10:9", "xyerrorbars", errors, curve);
     /* eta against shear rate and I, log-log, with the power laws */
@@ -203,7 +233,8 @@ int mimas_rheology_plot(const mimas_rheology *r, const char *prefix, mimas_error
                      k ? "Pa s" : "Pa s^{n+1}", b);
         }
         const double *x = k ? c->I : c->shear_rate;
-        ranges(x, c->eta, c->n, 1, 1, rg, sizeof rg);
+        ranges(x, c->eta, c->n, 1, 1, rg, sizeof rg, tics, sizeof tics);
+        strncat(labels, tics, sizeof labels - strlen(labels) - 1);
         n += panel(script[2] + n, sizeof script[2] - (size_t)n, labels,
                    drawable(x, c->eta, c->n, 1, 1), rg, k ? "4:5" : "6:5", ":11", "yerrorbars",
                    errors, curve);

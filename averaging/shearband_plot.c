@@ -101,7 +101,7 @@ int mimas_band_plot(const mimas_band *b, const mimas_band_plot_options *o, const
                   "set title 'band centre R_c and edges R_c ± W'\n"
                   "set xlabel 'r (m)'\nset ylabel 'z (m)'\n"
                   "set offsets graph 0.05, graph 0.05, graph 0.04, graph 0.04\nset autoscale fix\n"
-                  "set key below horizontal maxrows 2\n");
+                  "set key below horizontal maxcols 2\n");
     if (!nfits)
         snprintf(script + n, sizeof script - (size_t)n,
                  "set label 'no layer could be fitted' at graph 0.3, graph 0.5\n"
@@ -112,7 +112,7 @@ int mimas_band_plot(const mimas_band *b, const mimas_band_plot_options *o, const
                  "title 'R_c', '' using ($2-$4):1 with lines dt 2 lc rgb 'black' title "
                  "'R_c ± W', '' using ($2+$4):1 with lines dt 2 lc rgb 'black' notitle%s\n"
                  "unset multiplot\n", extra);
-    rc = mimas_plot_render(p, 1500, 700, script, err);
+    rc = mimas_plot_render(p, 1500, 760, script, err);
     if (rc) {
         mimas_plot_abort(p);
         return rc;
