@@ -508,6 +508,24 @@ static void print_value(FILE *out, const key_desc *k, double v)
     }
 }
 
+/* text as "; " comment lines of at most width characters, broken at spaces */
+static void print_comment(FILE *out, const char *text, size_t width)
+{
+    while (*text) {
+        size_t n = strlen(text);
+        if (n > width) {
+            n = width;
+            while (n > 0 && text[n] != ' ')
+                n--;
+            if (n == 0)
+                n = strcspn(text, " ");
+        }
+        fprintf(out, "; %.*s\n", (int)n, text);
+        text += n;
+        text += strspn(text, " ");
+    }
+}
+
 void sim_scenario_print(const sim_scenario *s, FILE *out)
 {
     fprintf(out, "# mimas simulate scenario (%s); every key with its default.\n"
@@ -524,10 +542,20 @@ void sim_scenario_print(const sim_scenario *s, FILE *out)
         }
         const void *base = strcmp(section, "contact") == 0 ? (const void *)&s->contact[1][1]
                                                            : (const void *)s;
+        char text[600];
+        snprintf(text, sizeof text, "%s%s%s%s", k->meaning, *k->unit ? " (" : "", k->unit,
+                 *k->unit ? ")" : "");
+        /* INI readers limit the line (inih: 200 bytes): a long meaning goes
+         * on comment lines of its own, before the key */
+        int own_lines = strlen(k->name) + strlen(text) > 140;
+        if (own_lines)
+            print_comment(out, text, 90);
         fprintf(out, "%s = ", k->name);
         print_value(out, k, load(base, k));
-        fprintf(out, "    ; %s%s%s%s\n", k->meaning, *k->unit ? " (" : "", k->unit,
-                *k->unit ? ")" : "");
+        if (own_lines)
+            fputc('\n', out);
+        else
+            fprintf(out, "    ; %s\n", text);
     }
 }
 
