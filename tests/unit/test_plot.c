@@ -56,9 +56,11 @@ static void test_symbols(void **state)
             assert_null(strchr(buf, '@'));
         }
     /* a short buffer is cut, never overrun */
-    char small[4];
+    char small[4] = "xyz";
     mimas_plot_literal("a_b_c_d", small, sizeof small);
-    assert_int_equal(small[3], '\0');
+    assert_string_equal(small, "a");     /* "\\_" does not fit after it */
+    mimas_plot_symbol("stress_rphi", small, sizeof small);
+    assert_true(strlen(small) < sizeof small);
 }
 
 int main(void)
