@@ -52,7 +52,8 @@ static void close_state(void *state)
 }
 
 static int open_local(local_stream *ls, const char *const *files, size_t n, const char *keywords,
-                      int walls, mimas_error *err)
+                      int walls, void (*notify)(void *, const char *), void *notify_ctx,
+                      mimas_error *err)
 {
     if (n == 0)
         return MIMAS_OK;
@@ -65,6 +66,8 @@ static int open_local(local_stream *ls, const char *const *files, size_t n, cons
     ls->what = walls ? "wall-contact" : "contact";
     ls->layout.keywords = keywords;
     ls->layout.walls = walls;
+    ls->layout.notify = notify;
+    ls->layout.notify_ctx = notify_ctx;
     return dump_series_open(&ls->s, names, count, err);
 }
 
@@ -82,9 +85,11 @@ static int open_state(void **state, const char *const *inputs, size_t ninputs,
     if (!rc)
         rc = dump_series_open(&st->atoms, names, count, err);
     if (!rc)
-        rc = open_local(&st->contacts, o->contacts, o->ncontacts, o->contact_columns, 0, err);
+        rc = open_local(&st->contacts, o->contacts, o->ncontacts, o->contact_columns, 0,
+                        o->notify, o->notify_ctx, err);
     if (!rc)
-        rc = open_local(&st->walls, o->walls, o->nwalls, o->wall_columns, 1, err);
+        rc = open_local(&st->walls, o->walls, o->nwalls, o->wall_columns, 1, o->notify,
+                        o->notify_ctx, err);
     if (rc) {
         close_state(st);
         return rc;

@@ -1,7 +1,9 @@
 /* Native format reader (docs/format.md): random access to frame k, reading
  * nothing of the other frames.  The frame count is the number of frames whose
  * every dataset is complete, so a file cut off while a frame was being
- * written shows the frames before it. */
+ * written shows the frames before it.  Files are opened for SWMR reading, so
+ * a file that mimas simulate is still writing yields the frames committed
+ * when it was opened. */
 #include <config.h>
 
 #include "native.h"
@@ -391,9 +393,31 @@ int mimas_native_open(mimas_native **out, const char *path, mimas_error *err)
     } else {
         hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
         H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
-        r->file = H5Fopen(path, H5F_ACC_RDONLY, fapl);
-        char text[256];
-        h5_error_text(text, sizeof text); /* before any other call clears the stack */
+        /* single-writer/multiple-reader read: the committed frames of a file
+         * that is still being written; files of the older format (or not
+         * written in SWMR mode) are opened plainly */
+        char text[256] = "", text2[256] = "";
+        r->file = H5Fopen(path, H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl);
+        if (r->file < 0) {
+            h5_error_text(text, sizeof text); /* before any other call clears the stack */
+            r->file = H5Fopen(path, H5F_ACC_RDONLY, fapl);
+            if (r->file < 0)
+                h5_error_text(text2, sizeof text2);
+            if (!strstr(text, "truncated") || strstr(text2, "truncated"))
+                memcpy(text, text2, sizeof text);
+        } else {
+            /* SWMR readers skip HDF5's end-of-file check (a writer may be
+             * extending the file): the committed end must be there */
+            haddr_t eoa = 0;
+            struct stat now;
+            if (H5Fget_eoa(r->file, &eoa) >= 0 && stat(path, &now) == 0 &&
+                (haddr_t)now.st_size < eoa) {
+                H5Fclose(r->file);
+                r->file = H5I_INVALID_HID;
+                snprintf(text, sizeof text, "truncated file: eof = %lld, eoa = %llu",
+                         (long long)now.st_size, (unsigned long long)eoa);
+            }
+        }
         H5Pclose(fapl);
         if (r->file < 0) {
             rc = mimas_error_set(err, MIMAS_EDATA,
@@ -439,6 +463,32 @@ int mimas_native_has_walls(const mimas_native *r)
 const char *mimas_native_creator(const mimas_native *r)
 {
     return r->creator;
+}
+
+size_t mimas_native_particle_columns(const mimas_native *r)
+{
+    return r->npcols;
+}
+
+void mimas_native_particle_column(const mimas_native *r, size_t k, mimas_native_column *c)
+{
+    const native_col *nc = &r->pcols[k];
+    memset(c, 0, sizeof *c);
+    c->name = nc->name;
+    c->ncomp = nc->ncomp;
+    h5_quiet q;
+    h5_quiet_begin(&q);
+    hid_t ft = H5Dget_type(nc->ds);
+    c->is_float = H5Tget_class(ft) == H5T_FLOAT;
+    c->precision = (int)H5Tget_size(ft);
+    H5Tclose(ft);
+    hsize_t dims[4] = {0};
+    c->rank = ds_shape(nc->ds, dims);
+    if (c->rank > 3)
+        c->rank = 3;
+    for (int d = 0; d < c->rank; d++)
+        c->dims[d] = dims[d];
+    h5_quiet_end(&q);
 }
 
 /* ---- reading frame k ---- */

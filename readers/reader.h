@@ -28,6 +28,11 @@ typedef struct mimas_reader_options {
     double timestep;                 /* dt: time = step * dt for dumps without ITEM: TIME
                                         (0: such frames have time NaN, "unknown") */
     int allow_missing_contacts;      /* skip frames that lack contact data */
+    /* told what the reader found out by itself (e.g. the columns of a
+     * LIGGGHTS local dump inferred from their count), one line naming the
+     * file; NULL: nobody is told */
+    void (*notify)(void *ctx, const char *message);
+    void *notify_ctx;
 } mimas_reader_options;
 
 void mimas_reader_options_default(mimas_reader_options *o);

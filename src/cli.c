@@ -79,11 +79,21 @@ static int input_option(const cli_command *cmd, cli_inputs *in, size_t k, const 
     return 1;
 }
 
+/* What a reader found out by itself, on standard error. */
+static void note(void *ctx, const char *message)
+{
+    fprintf(stderr, "mimas %s: %s\n", ((const cli_command *)ctx)->name, message);
+}
+
 int cli_open_inputs(const cli_command *cmd, cli_inputs *in, int argc, char **argv, int first,
                     mimas_reader **r)
 {
     if (first >= argc)
         return cli_fail(cmd, 1, "no input file (see mimas %s --help)", cmd->name);
+    if (!in->quiet) {
+        in->opt.notify = note;
+        in->opt.notify_ctx = (void *)cmd;
+    }
     mimas_error err;
     int rc = mimas_reader_open(r, (const char *const *)argv + first, (size_t)(argc - first),
                                &in->opt, &err);

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "average.h"
+#include "cli_table.h"
 #include "commands.h"
 #include "output_h5.h"
 #include "fields.h"
@@ -40,10 +41,13 @@ static const cli_option options[] = {
                          "mean diameter)"},
     {"list-fields", 0, NULL, "print the fields with their units and definitions (Markdown) and "
                              "exit"},
+    CLI_TABLE_BLOCKS_OPTION,
+    CLI_TABLE_OPTIONS,
 };
 
 enum { O_GRID, O_WEIGHT, O_FIELDS, O_AXIS, O_FROM, O_TO, O_EVERY, O_TYPES, O_EXCLUDE,
-       O_ERRORS, O_PER_FRAME, O_OUTPUT, O_TSV, O_THREADS, O_DIAMETER, O_LIST };
+       O_ERRORS, O_PER_FRAME, O_OUTPUT, O_TSV, O_THREADS, O_DIAMETER, O_LIST, O_BLOCKS,
+       O_TABLE };
 
 typedef struct average_args {
     const cli_command *cmd;
@@ -55,6 +59,7 @@ typedef struct average_args {
     int32_t types[64];
     size_t ntypes;
     int exclude, types_given, list, per_frame;
+    cli_table_options table;
 } average_args;
 
 static int parse_types(average_args *a, const char *arg, const char *opt)
@@ -91,8 +96,9 @@ static int on_option(void *ctx, size_t opt, const char *arg)
         return 0;
     case O_LIST: a->list = 1; return 0;
     case O_THREADS: return cli_parse_threads(a->cmd, arg, &a->threads);
+    case O_BLOCKS: a->table.blocks = 1; return 0;
+    default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
-    return 1;
 }
 
 /* Which derived columns to write: all that exist on this grid, or those the
@@ -127,46 +133,48 @@ static int choose_fields(average_args *a, int cyl, unsigned char *want)
     return rc;
 }
 
-/* Full precision; "nan" where a field is undefined (docs/fields.md). */
-static void print_value(FILE *out, const char *sep, double v)
-{
-    if (isnan(v))
-        fprintf(out, "%snan", sep);
-    else
-        fprintf(out, "%s%.17g", sep, v);
-}
-
-static void write_header(FILE *out, const mimas_grid *g, int grid_none, int cyl,
+static void write_header(cli_table *t, const mimas_grid *g, int grid_none, int cyl,
                          const unsigned char *want, int errors, int per_frame)
 {
-    const char *sep = "";
     if (per_frame) {
-        fprintf(out, "step\ttime");
-        sep = "\t";
+        cli_table_column(t, "step", NULL);
+        cli_table_column(t, "time", "s");
     }
     for (int d = 0; d < 3 && !grid_none; d++)
-        if (g->gridded[d]) {
-            fprintf(out, "%s%s", sep, mimas_grid_coord_name(g, d));
-            sep = "\t";
-        }
+        if (g->gridded[d])
+            cli_table_column(t, mimas_grid_coord_name(g, d),
+                             cyl && d == 1 ? "rad" : "m");
     for (size_t k = 0; k < mimas_fields_count(); k++) {
         if (!want[k])
             continue;
-        fprintf(out, "%s%s", sep, mimas_field_name(k, cyl));
-        sep = "\t";
-        if (errors)
-            fprintf(out, "\t%s_sem", mimas_field_name(k, cyl));
+        const char *name = mimas_field_name(k, cyl), *unit = mimas_field(k)->unit;
+        cli_table_column(t, name, unit);
+        if (errors) {
+            char sem[80];
+            snprintf(sem, sizeof sem, "%s_sem", name);
+            cli_table_column(t, sem, unit);
+        }
     }
-    fputc('\n', out);
+    cli_table_header_end(t);
 }
 
-/* One row per cell; with frame (not NULL) the rows start with its step and time. */
-static int write_rows(FILE *out, const mimas_average *avg, int grid_none,
+/* One row per cell ("nan" where a field is undefined, docs/fields.md); with
+ * frame (not NULL) the rows start with its step and time.  With blocks, a
+ * blank line ends each row of a grid with two or more gridded directions,
+ * and two end each frame. */
+static int write_rows(cli_table *t, const mimas_average *avg, int grid_none,
                       const unsigned char *want, int errors, const mimas_frame *frame)
 {
     const mimas_grid *g = mimas_average_grid(avg);
     size_t nf = mimas_fields_count();
     size_t cells = grid_none ? 1 : mimas_grid_cells(g);
+    int fast = -1, gridded = 0;  /* the fastest gridded direction */
+    for (int d = 0; d < 3 && !grid_none; d++)
+        if (g->gridded[d]) {
+            gridded++;
+            if (fast < 0)
+                fast = d;
+        }
     double *mean = malloc(cells * nf * sizeof *mean), *sd = malloc(cells * nf * sizeof *sd),
            *count = malloc(cells * nf * sizeof *count);
     int rc = mean && sd && count ? mimas_average_fields(avg, mean, sd, count) : -1;
@@ -174,32 +182,35 @@ static int write_rows(FILE *out, const mimas_average *avg, int grid_none,
         double ctr[3];
         if (!grid_none)
             mimas_grid_cell_centre(g, cell, ctr);
-        const char *sep = "";
         if (frame) {
-            fprintf(out, "%lld", (long long)frame->step);
-            print_value(out, "\t", frame->time);
-            sep = "\t";
+            cli_table_int(t, (long long)frame->step);
+            cli_table_double(t, frame->time);
         }
         for (int d = 0; d < 3 && !grid_none; d++)
-            if (g->gridded[d]) {
-                print_value(out, sep, ctr[d]);
-                sep = "\t";
-            }
+            if (g->gridded[d])
+                cli_table_double(t, ctr[d]);
         const double *m = &mean[cell * nf], *s = &sd[cell * nf], *n = &count[cell * nf];
         for (size_t k = 0; k < nf; k++) {
             if (!want[k])
                 continue;
-            print_value(out, sep, m[k]);
-            sep = "\t";
+            cli_table_double(t, m[k]);
             if (errors)
-                print_value(out, sep, n[k] > 1 ? s[k] / sqrt(n[k]) : NAN);
+                cli_table_double(t, n[k] > 1 ? s[k] / sqrt(n[k]) : NAN);
         }
-        fputc('\n', out);
+        cli_table_row_end(t);
+        int idx[3] = {0, 0, 0};
+        if (!grid_none)
+            mimas_grid_unindex(g, cell, idx);
+        int last = cell + 1 == cells;
+        if (frame && last)
+            cli_table_block_end(t, 1);
+        else if (gridded >= 2 && idx[fast] == g->n[fast] - 1)
+            cli_table_block_end(t, 0);
     }
     free(mean);
     free(sd);
     free(count);
-    return rc || ferror(out) ? -1 : 0;
+    return rc || ferror(t->fp) ? -1 : 0;
 }
 
 /* The field table as docs/fields.md shows it. */
@@ -262,9 +273,11 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (a.tsv || !a.output)
         status = cli_output_open(&table, a.tsv, &err);
     FILE *out = table.fp;
+    cli_table tw;
+    cli_table_start(&tw, out, &a.table);
     mimas_fields_file *ff = NULL;
     if (!status && a.output)
-        status = mimas_fields_open(&ff, a.output, &err);
+        status = mimas_fields_open(&ff, a.output, want, &err);
     mimas_average *one = NULL; /* the current frame alone (--per-frame) */
     if (!status && a.per_frame) {
         mimas_average_options o1 = o;
@@ -293,8 +306,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
             status = mimas_average_add(one, &f, &err);
             if (!status && out) {
                 if (!header_done++)
-                    write_header(out, mimas_average_grid(one), o.grid_none, cyl, want, 0, 1);
-                if (write_rows(out, one, o.grid_none, want, 0, &f))
+                    write_header(&tw, mimas_average_grid(one), o.grid_none, cyl, want, 0, 1);
+                if (write_rows(&tw, one, o.grid_none, want, 0, &f))
                     status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
             }
             if (!status && ff)
@@ -316,8 +329,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
         status = mimas_error_set(&err, MIMAS_EDATA, "%s: no frame in the selected time range",
                                  argv[first]);
     if (status == MIMAS_END && out && !a.per_frame) {
-        write_header(out, mimas_average_grid(avg), o.grid_none, cyl, want, a.errors, 0);
-        if (write_rows(out, avg, o.grid_none, want, a.errors, NULL))
+        write_header(&tw, mimas_average_grid(avg), o.grid_none, cyl, want, a.errors, 0);
+        if (write_rows(&tw, avg, o.grid_none, want, a.errors, NULL))
             status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
     }
     if (status == MIMAS_END && ff) {
@@ -329,6 +342,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
             status = MIMAS_END;
     }
     mimas_average_free(avg);
+    cli_table_end(&tw);
     int closed = cli_output_close(&table, status == MIMAS_END, &err);
     if (closed)
         status = closed;

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_table.h"
 #include "commands.h"
 #include "fieldset.h"
 #include "rheology.h"
@@ -26,15 +27,18 @@ static const cli_option options[] = {
                                         "grids)"},
     {"plot", 0, "PREFIX", "draw PREFIX.yield.png, PREFIX.mu_I.png and PREFIX.eta.png (gnuplot)"},
     {"output", 'o', "FILE", "write the table to FILE (default: standard output)"},
+    CLI_TABLE_OPTIONS,
 };
 
-enum { O_MIN_RATE, O_P_RANGE, O_RATE_WINDOWS, O_I_WINDOWS, O_DEFINITION, O_PLOT, O_OUTPUT };
+enum { O_MIN_RATE, O_P_RANGE, O_RATE_WINDOWS, O_I_WINDOWS, O_DEFINITION, O_PLOT, O_OUTPUT,
+       O_TABLE };
 
 typedef struct rheology_args {
     const cli_command *cmd;
     mimas_rheology_options o;
     mimas_rheology_window rate[MAX_WINDOWS], I[MAX_WINDOWS];
     const char *plot, *output;
+    cli_table_options table;
 } rheology_args;
 
 static int on_option(void *ctx, size_t opt, const char *arg)
@@ -73,32 +77,39 @@ static int on_option(void *ctx, size_t opt, const char *arg)
         return 0;
     case O_PLOT: a->plot = arg; return 0;
     case O_OUTPUT: a->output = arg; return 0;
+    default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
-    return 1;
 }
 
-static void print_value(FILE *out, double v)
-{
-    if (isnan(v))
-        fputs("\tnan", out);
-    else
-        fprintf(out, "\t%.10g", v);
-}
+typedef struct rheology_table {
+    const rheology_args *a;
+    const mimas_rheology *r;
+} rheology_table;
 
+/* The units of value, error, lo and hi depend on the row (docs/rheology.md): "-". */
 static void write_table(FILE *out, const void *ctx)
 {
-    const mimas_rheology *r = ctx;
-    fputs("table\tparameter\tvalue\terror\tnpts\tlo\thi\tstatus\n", out);
-    for (size_t k = 0; k < r->nrows; k++) {
-        const mimas_rheology_row *w = &r->rows[k];
-        fprintf(out, "%s\t%s", w->table, w->parameter);
-        print_value(out, w->value);
-        print_value(out, w->error);
-        fprintf(out, "\t%zu", w->npts);
-        print_value(out, w->lo);
-        print_value(out, w->hi);
-        fprintf(out, "\t%s\n", mimas_fit_status_name(w->status));
+    const rheology_table *rt = ctx;
+    cli_table t;
+    cli_table_start(&t, out, &rt->a->table);
+    static const char *const cols[] = {"table", "parameter", "value", "error", "npts", "lo",
+                                       "hi", "status"};
+    for (int k = 0; k < 8; k++)
+        cli_table_column(&t, cols[k], NULL);
+    cli_table_header_end(&t);
+    for (size_t k = 0; k < rt->r->nrows; k++) {
+        const mimas_rheology_row *w = &rt->r->rows[k];
+        cli_table_text(&t, w->table);
+        cli_table_text(&t, w->parameter);
+        cli_table_double(&t, w->value);
+        cli_table_double(&t, w->error);
+        cli_table_int(&t, (long long)w->npts);
+        cli_table_double(&t, w->lo);
+        cli_table_double(&t, w->hi);
+        cli_table_text(&t, mimas_fit_status_name(w->status));
+        cli_table_row_end(&t);
     }
+    cli_table_end(&t);
 }
 
 static int run(const cli_command *cmd, int argc, char **argv)
@@ -123,14 +134,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
     mimas_fieldset_close(fs);
     if (!status && a.plot)
         status = mimas_rheology_plot(r, a.plot, &err);
-    cli_output table = {0};
+    rheology_table rt = {&a, r};
     if (!status)
-        status = cli_output_open(&table, a.output, &err);
-    if (!status)
-        write_table(table.fp, r);
-    int closed = cli_output_close(&table, !status, &err);
-    if (closed && !status)
-        status = closed;
+        status = cli_write_table(a.output, write_table, &rt, &err);
     mimas_rheology_free(r);
     if (status)
         return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "average.h"
+#include "cli_table.h"
 #include "commands.h"
 #include "fieldset.h"
 #include "reader.h"
@@ -28,10 +29,11 @@ static const cli_option options[] = {
     {"to", 0, "T1", "raw input: last time to average (s)"},
     {"exclude-types", 0, "L", "raw input: leave out particles of these types (e.g. glued wall "
                               "particles)"},
+    CLI_TABLE_OPTIONS,
 };
 
 enum { O_OMEGA, O_MODEL, O_MIN, O_UNWEIGHTED, O_FENISTEIN, O_PLOT, O_OUTPUT, O_FROM, O_TO,
-       O_EXCLUDE };
+       O_EXCLUDE, O_TABLE };
 
 typedef struct band_args {
     const cli_command *cmd;
@@ -42,6 +44,7 @@ typedef struct band_args {
     cli_window window;
     int32_t types[64];
     size_t ntypes;
+    cli_table_options table;
 } band_args;
 
 static int on_option(void *ctx, size_t opt, const char *arg)
@@ -82,8 +85,8 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
     case O_EXCLUDE:
         return cli_parse_types(a->cmd, "exclude-types", arg, a->types, 64, &a->ntypes);
+    default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
-    return 1;
 }
 
 /* Raw particle input: average with bins on an r-z grid chosen from the
@@ -138,14 +141,6 @@ static int average_input(const band_args *a, const cli_inputs *in, mimas_reader 
     return status;
 }
 
-static void print_value(FILE *out, double v)
-{
-    if (isnan(v))
-        fputs("\tnan", out);
-    else
-        fprintf(out, "\t%.10g", v);
-}
-
 typedef struct band_table {
     const band_args *a;
     const mimas_band *b;
@@ -155,29 +150,39 @@ static void write_table(FILE *out, const void *ctx)
 {
     const band_args *a = ((const band_table *)ctx)->a;
     const mimas_band *b = ((const band_table *)ctx)->b;
-    fputs("z\tRc\tRc_err\tW\tW_err\tchi2\tnpts", out);
-    if (b->model == 4)
-        fputs("\tA\tA_err\tB\tB_err", out);
+    cli_table t;
+    cli_table_start(&t, out, &a->table);
+    static const char *const cols[] = {"z", "Rc", "Rc_err", "W", "W_err"};
+    for (int k = 0; k < 5; k++)
+        cli_table_column(&t, cols[k], "m");
+    cli_table_column(&t, "chi2", "1");
+    cli_table_column(&t, "npts", NULL);
+    static const char *const ab[] = {"A", "A_err", "B", "B_err"};
+    for (int k = 0; b->model == 4 && k < 4; k++)
+        cli_table_column(&t, ab[k], "1");
     if (a->fenistein)
-        fputs("\tRc_fenistein", out);
-    fputs("\tstatus\n", out);
+        cli_table_column(&t, "Rc_fenistein", "m");
+    cli_table_column(&t, "status", NULL);
+    cli_table_header_end(&t);
     for (size_t k = 0; k < b->nlayers; k++) {
         const mimas_fit *f = &b->layers[k].fit;
-        fprintf(out, "%.10g", b->layers[k].z);
+        cli_table_double(&t, b->layers[k].z);
         for (int q = MIMAS_BAND_RC; q <= MIMAS_BAND_W; q++) {
-            print_value(out, f->p[q]);
-            print_value(out, f->err[q]);
+            cli_table_double(&t, f->p[q]);
+            cli_table_double(&t, f->err[q]);
         }
-        print_value(out, f->chi2);
-        fprintf(out, "\t%zu", f->npts);
+        cli_table_double(&t, f->chi2);
+        cli_table_int(&t, (long long)f->npts);
         for (int q = MIMAS_BAND_A; b->model == 4 && q <= MIMAS_BAND_B; q++) {
-            print_value(out, f->p[q]);
-            print_value(out, f->err[q]);
+            cli_table_double(&t, f->p[q]);
+            cli_table_double(&t, f->err[q]);
         }
         if (a->fenistein)
-            print_value(out, mimas_band_fenistein_rc(a->rs, a->h));
-        fprintf(out, "\t%s\n", mimas_fit_status_name(f->status));
+            cli_table_double(&t, mimas_band_fenistein_rc(a->rs, a->h));
+        cli_table_text(&t, mimas_fit_status_name(f->status));
+        cli_table_row_end(&t);
     }
+    cli_table_end(&t);
 }
 
 static int run(const cli_command *cmd, int argc, char **argv)

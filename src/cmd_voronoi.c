@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_table.h"
 #include "commands.h"
 #include "native.h"
 #include "reader.h"
@@ -29,9 +30,10 @@ static const cli_option options[] = {
     {"tsv", 0, "FILE", "write the table to FILE, or - for standard output (the default "
                        "without -o)"},
     {"threads", 0, "N", "OpenMP threads (default: OMP_NUM_THREADS or all cores)"},
+    CLI_TABLE_OPTIONS,
 };
 
-enum { O_RADICAL, O_WALLS, O_EXTENT, O_VWIDTH, O_EXCLUDE, O_OUTPUT, O_TSV, O_THREADS };
+enum { O_RADICAL, O_WALLS, O_EXTENT, O_VWIDTH, O_EXCLUDE, O_OUTPUT, O_TSV, O_THREADS, O_TABLE };
 
 #define MAX_WALLS 16
 
@@ -41,6 +43,7 @@ typedef struct voronoi_args {
     mimas_voro_wall walls[MAX_WALLS];
     int32_t types[64];
     const char *tsv, *output;
+    cli_table_options table;
 } voronoi_args;
 
 static int parse_types(voronoi_args *a, const char *arg)
@@ -72,21 +75,31 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_OUTPUT: a->output = arg; return 0;
     case O_TSV: a->tsv = arg; return 0;
     case O_THREADS: return cli_parse_threads(a->cmd, arg, &a->o.threads);
+    default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
-    return 1;
 }
 
-static void print_value(FILE *out, double v)
+static void write_header(cli_table *t)
 {
-    if (isnan(v))
-        fputs("\tnan", out);
-    else
-        fprintf(out, "\t%.17g", v);
+    static const struct {
+        const char *name, *unit;
+    } cols[] = {{"step", NULL}, {"id", NULL}, {"x", "m"}, {"y", "m"}, {"z", "m"},
+                {"volume", "m3"}, {"nu", "1"}, {"faces", NULL}, {"surface", NULL}};
+    for (size_t k = 0; k < sizeof cols / sizeof cols[0]; k++)
+        cli_table_column(t, cols[k].name, cols[k].unit);
+    static const char *const ab = "xyz";
+    for (int m = 0; m < 9; m++) {
+        char name[16];
+        snprintf(name, sizeof name, "stress_%c%c", ab[m / 3], ab[m % 3]);
+        cli_table_column(t, name, "Pa");
+    }
+    cli_table_header_end(t);
 }
 
 /* Rows "step id x y z volume nu faces surface stress_xx .. stress_zz" of the
  * reported particles. */
-static int write_rows(const mimas_voronoi *v, const mimas_frame *f, FILE *out, mimas_error *err)
+static int write_rows(const mimas_voronoi *v, const mimas_frame *f, cli_table *t,
+                      mimas_error *err)
 {
     const mimas_particles *p = &f->particles;
     mimas_voronoi_values val;
@@ -94,17 +107,19 @@ static int write_rows(const mimas_voronoi *v, const mimas_frame *f, FILE *out, m
     for (size_t k = 0; k < p->n; k++) {
         if (!mimas_voronoi_reported(v, p, k))
             continue;
-        fprintf(out, "%lld\t%lld", (long long)f->step, (long long)p->id[k]);
+        cli_table_int(t, (long long)f->step);
+        cli_table_int(t, (long long)p->id[k]);
         for (int d = 0; d < 3; d++)
-            print_value(out, p->pos[k][d]);
-        print_value(out, val.volume[k]);
-        print_value(out, val.nu[k]);
-        fprintf(out, "\t%d\t%d", (int)val.faces[k], (int)val.surface[k]);
+            cli_table_double(t, p->pos[k][d]);
+        cli_table_double(t, val.volume[k]);
+        cli_table_double(t, val.nu[k]);
+        cli_table_int(t, (long long)val.faces[k]);
+        cli_table_int(t, (long long)val.surface[k]);
         for (int m = 0; m < 9; m++)
-            print_value(out, val.stress ? val.stress[9 * k + (size_t)m] : NAN);
-        fputc('\n', out);
+            cli_table_double(t, val.stress ? val.stress[9 * k + (size_t)m] : NAN);
+        cli_table_row_end(t);
     }
-    return ferror(out) ? mimas_error_set(err, MIMAS_EIO, "cannot write the table") : MIMAS_OK;
+    return ferror(t->fp) ? mimas_error_set(err, MIMAS_EIO, "cannot write the table") : MIMAS_OK;
 }
 
 static int run(const cli_command *cmd, int argc, char **argv)
@@ -135,15 +150,17 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (a.tsv || !a.output)
         status = cli_output_open(&table, a.tsv, &err);
     FILE *out = table.fp;
+    cli_table tw;
+    cli_table_start(&tw, out, &a.table);
     if (out)
-        fputs("step\tid\tx\ty\tz\tvolume\tnu\tfaces\tsurface\tstress_xx\tstress_xy\tstress_xz\t"
-              "stress_yx\tstress_yy\tstress_yz\tstress_zx\tstress_zy\tstress_zz\n", out);
+        write_header(&tw);
     mimas_writer *w = NULL;
     char *provenance = cli_command_line(argc, argv);
     if (!status && a.output) {
         mimas_writer_options wo;
         mimas_writer_options_default(&wo);
         wo.atomic = 1; /* no partial output */
+        wo.xdmf = 1;
         wo.provenance = provenance;
         status = mimas_writer_open(&w, a.output, &wo, &err);
     }
@@ -158,7 +175,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
         if (status && status != MIMAS_EIO)
             mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
         if (!status && out)
-            status = write_rows(vor, &f, out, &err);
+            status = write_rows(vor, &f, &tw, &err);
         if (!status && w)
             status = mimas_writer_append(w, &f, &err);
         cli_progress_frame(&prog, cmd, ++frames, (long long)f.step, f.time);
@@ -181,6 +198,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
         }
     }
     free(provenance);
+    cli_table_end(&tw);
     int closed = cli_output_close(&table, status == MIMAS_END, &err);
     if (closed)
         status = closed;

@@ -11,6 +11,7 @@ extern const cli_command cmd_rheology;
 extern const cli_command cmd_shearband;
 extern const cli_command cmd_simulate;
 extern const cli_command cmd_voronoi;
+extern const cli_command cmd_xdmf;
 extern const cli_command cmd_plot;
 
 #endif

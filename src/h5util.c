@@ -64,6 +64,18 @@ int h5_attr_write_str(hid_t obj, const char *name, const char *value)
     return rc;
 }
 
+int h5_attr_write_vlstr(hid_t obj, const char *name, const char *value)
+{
+    hid_t t = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t, H5T_VARIABLE);
+    H5Tset_cset(t, H5T_CSET_UTF8);
+    hid_t s = H5Screate(H5S_SCALAR);
+    int rc = write_attr(obj, name, t, s, &value);
+    H5Sclose(s);
+    H5Tclose(t);
+    return rc;
+}
+
 int h5_attr_write_strs(hid_t obj, const char *name, const char *const *values, size_t n)
 {
     size_t w = 1;
@@ -137,6 +149,7 @@ int h5_attr_read_str(hid_t obj, const char *name, char *buf, size_t len)
             char *v = NULL;
             hid_t mt = H5Tcopy(H5T_C_S1);
             H5Tset_size(mt, H5T_VARIABLE);
+            H5Tset_cset(mt, H5Tget_cset(ft)); /* HDF5 does not convert ASCII <-> UTF-8 */
             if (H5Aread(a, mt, &v) >= 0 && v) {
                 snprintf(buf, len, "%s", v);
                 H5free_memory(v);
@@ -150,6 +163,7 @@ int h5_attr_read_str(hid_t obj, const char *name, char *buf, size_t len)
                 hid_t mt = H5Tcopy(H5T_C_S1);
                 H5Tset_size(mt, sz + 1);
                 H5Tset_strpad(mt, H5T_STR_NULLTERM);
+                H5Tset_cset(mt, H5Tget_cset(ft));
                 if (H5Aread(a, mt, tmp) >= 0) {
                     tmp[sz] = '\0';
                     snprintf(buf, len, "%s", tmp);

@@ -20,6 +20,9 @@ void h5_quiet_end(const h5_quiet *q);
 void h5_error_text(char *buf, size_t len);
 
 int h5_attr_write_str(hid_t obj, const char *name, const char *value);
+/* A scalar variable-length string attribute (what H5MD 1.1 asks of its
+ * string attributes, e.g. unit). */
+int h5_attr_write_vlstr(hid_t obj, const char *name, const char *value);
 int h5_attr_write_strs(hid_t obj, const char *name, const char *const *values, size_t n);
 int h5_attr_write_ints(hid_t obj, const char *name, const int *values, size_t n);
 int h5_attr_write_double(hid_t obj, const char *name, double value);

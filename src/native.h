@@ -14,7 +14,7 @@ extern "C" {
 #endif
 
 #define MIMAS_NATIVE_VERSION_MAJOR 1
-#define MIMAS_NATIVE_VERSION_MINOR 0
+#define MIMAS_NATIVE_VERSION_MINOR 1
 
 /* ---- writer ---- */
 typedef struct mimas_writer mimas_writer;
@@ -25,6 +25,7 @@ typedef struct mimas_writer_options {
     int triclinic;      /* store edge vectors even if the first box is orthogonal */
     const char *author; /* H5MD author name (default: $USER or "unknown") */
     const char *provenance; /* free text, e.g. the command line (may be NULL) */
+    int xdmf;           /* on close, write the XDMF sidecar (FILE.xdmf) for ParaView */
 } mimas_writer_options;
 
 void mimas_writer_options_default(mimas_writer_options *o);
@@ -61,6 +62,20 @@ int mimas_native_frame_meta(mimas_native *r, size_t k, mimas_frame_meta *m, mima
 int mimas_native_has_contacts(const mimas_native *r);
 int mimas_native_has_walls(const mimas_native *r);
 const char *mimas_native_creator(const mimas_native *r);
+/* The per-particle datasets as stored (for sidecars such as XDMF): name
+ * (the element under /particles/all), the stored number type, components and
+ * the dataset's extent (frames [including any not yet committed], slots
+ * [, components]). */
+typedef struct mimas_native_column {
+    const char *name;
+    int is_float;       /* floating point, else integer */
+    int precision;      /* bytes per value */
+    int ncomp;
+    int rank;
+    unsigned long long dims[3];
+} mimas_native_column;
+size_t mimas_native_particle_columns(const mimas_native *r);
+void mimas_native_particle_column(const mimas_native *r, size_t k, mimas_native_column *c);
 void mimas_native_close(mimas_native *r);
 
 #ifdef __cplusplus

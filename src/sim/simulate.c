@@ -70,6 +70,7 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
     mimas_writer_options wo;
     mimas_writer_options_default(&wo);
     wo.provenance = o->provenance;
+    wo.xdmf = 1; /* the sidecar for ParaView, written when the run ends */
     int rc = sim_setup(&s, sc, &plan, err);
     if (!rc && o->resume) {
         if (!(rc = sim_checkpoint_read(&s, ckpt, err)))
