@@ -13,6 +13,7 @@
 #include "h5util.h"
 #include "output_xdmf.h"
 #include "xdmf.h"
+#include "outfile.h"
 
 /* Dimensions of a field dataset: (n2, n1, n0), direction 0 fastest like the
  * cell index. */
@@ -98,6 +99,8 @@ int mimas_fields_open(mimas_fields_file **out, const char *path, const unsigned 
                       mimas_error *err)
 {
     *out = NULL;
+    if (mimas_output_check(path, err))
+        return err->code;
     mimas_fields_file *ff = calloc(1, sizeof *ff);
     if (!ff)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");

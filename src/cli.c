@@ -1,6 +1,7 @@
 #include <config.h>
 
 #include "cli.h"
+#include "outfile.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -377,6 +378,13 @@ int cli_window_time(const cli_command *cmd, cli_window *w, int from, const char 
     return 0;
 }
 
+int cli_window_every(const cli_command *cmd, cli_window *w, const char *arg)
+{
+    if (cli_parse_long(arg, &w->every) || w->every < 1)
+        return cli_fail(cmd, 1, "--every needs a positive whole number, not '%s'", arg);
+    return 0;
+}
+
 int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mimas_error *err)
 {
     if ((w->has_from || w->has_to) && isnan(f->time)) {
@@ -462,8 +470,9 @@ static void progress_line(cli_progress *p, const cli_command *cmd, const char *w
     if (left < 0)
         left = done > 0 ? (seconds() - p->start) * (total - done) / done : -1;
     duration_text(left, text, sizeof text);
-    fprintf(stderr, "\r\033[Kmimas %s: %s %.0f/%.0f (%.0f %%), %s, %s left", cmd->name, what,
-            done, total, total > 0 ? 100 * done / total : 0, detail, text);
+    fprintf(stderr, "\r\033[Kmimas %s: %s %.0f/%.0f (%.0f %%), %s%s%s left", cmd->name, what,
+            done, total, total > 0 ? 100 * done / total : 0, detail ? detail : "",
+            detail ? ", " : "", text);
     fflush(stderr);
 }
 
@@ -492,6 +501,12 @@ void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, 
     fflush(stderr);
 }
 
+void cli_progress_count(cli_progress *p, const cli_command *cmd, const char *what, size_t done,
+                        size_t total)
+{
+    cli_progress_work(p, cmd, what, (double)done, (double)total, -1, NULL);
+}
+
 void cli_progress_done(cli_progress *p)
 {
     if (p->on && p->shown)
@@ -506,8 +521,13 @@ int cli_output_open(cli_output *o, const char *path, mimas_error *err)
         return MIMAS_OK;
     }
     o->path = path;
-    snprintf(o->tmp, sizeof o->tmp, "%s.tmp%ld", path, (long)getpid());
-    o->fp = fopen(o->tmp, "w");
+    /* a device or a pipe takes the table as it comes: renamed onto, a
+     * finished file would replace it */
+    if (mimas_output_is_special(path))
+        o->tmp[0] = '\0';
+    else
+        snprintf(o->tmp, sizeof o->tmp, "%s.tmp%ld", path, (long)getpid());
+    o->fp = fopen(o->tmp[0] ? o->tmp : path, "w");
     if (!o->fp)
         return mimas_error_set(err, MIMAS_EIO, "%s: cannot write: %s", path, strerror(errno));
     return MIMAS_OK;
@@ -523,9 +543,9 @@ int cli_output_close(cli_output *o, int ok, mimas_error *err)
             rc = mimas_error_set(err, MIMAS_EIO, "cannot write the table");
     } else {
         int closed = fclose(o->fp) == 0;
-        if (ok && (!closed || rename(o->tmp, o->path) != 0))
+        if (ok && (!closed || (o->tmp[0] && rename(o->tmp, o->path) != 0)))
             rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", o->path);
-        if (!ok || rc)
+        if ((!ok || rc) && o->tmp[0])
             remove(o->tmp);
     }
     o->fp = NULL;

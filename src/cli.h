@@ -81,9 +81,12 @@ void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, 
                         double time);
 /* Any work of known size: "mimas CMD: WHAT done/total (P %), DETAIL, T left";
  * left: the seconds left if the caller knows them better (< 0: from the
- * time since cli_progress_begin and done/total). */
+ * time since cli_progress_begin and done/total); detail may be NULL. */
 void cli_progress_work(cli_progress *p, const cli_command *cmd, const char *what, double done,
                        double total, double left, const char *detail);
+/* The same for a count of things: "mimas CMD: WHAT DONE/TOTAL (P %), T left". */
+void cli_progress_count(cli_progress *p, const cli_command *cmd, const char *what, size_t done,
+                        size_t total);
 void cli_progress_done(cli_progress *p);
 
 /* A table written to standard output, or to a file under a temporary name
@@ -91,9 +94,10 @@ void cli_progress_done(cli_progress *p);
 typedef struct cli_output {
     FILE *fp;
     const char *path;   /* NULL: standard output */
-    char tmp[4200];
+    char tmp[4200];     /* "": written straight to path (a device or a pipe) */
 } cli_output;
-/* path NULL or "-": standard output. */
+/* path NULL or "-": standard output; a path that is not a regular file
+ * (/dev/null, a pipe) is written straight through. */
 int cli_output_open(cli_output *o, const char *path, mimas_error *err);
 /* Finishes the table: with ok, flushes (and renames the file into place);
  * else removes the temporary file.  Returns MIMAS_OK or a write error. */
@@ -116,6 +120,9 @@ typedef struct cli_window {
 /* --from (from = 1) or --to TIME into the window; prints the usage error
  * and returns 1 on a bad time. */
 int cli_window_time(const cli_command *cmd, cli_window *w, int from, const char *arg);
+/* --every K into the window; prints the usage error and returns 1 unless
+ * K is a positive whole number. */
+int cli_window_every(const cli_command *cmd, cli_window *w, const char *arg);
 /* 1 if frame f is used, 0 if not; MIMAS_EUSAGE (negated: -1) with err set
  * when the window needs a time the frame (of input) does not have. */
 int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mimas_error *err);

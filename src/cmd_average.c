@@ -80,10 +80,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_AXIS: a->axis = arg; return 0;
     case O_FROM:
     case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
-    case O_EVERY:
-        if (cli_parse_long(arg, &a->window.every) || a->window.every < 1)
-            return cli_fail(a->cmd, 1, "--every needs a positive whole number, not '%s'", arg);
-        return 0;
+    case O_EVERY: return cli_window_every(a->cmd, &a->window, arg);
     case O_TYPES: return parse_types(a, arg, "types");
     case O_EXCLUDE: a->exclude = 1; return parse_types(a, arg, "exclude-types");
     case O_ERRORS: a->errors = 1; return 0;

@@ -6,6 +6,7 @@
 
 extern const cli_command cmd_average;
 extern const cli_command cmd_convert;
+extern const cli_command cmd_disperse;
 extern const cli_command cmd_info;
 extern const cli_command cmd_rheology;
 extern const cli_command cmd_shearband;

@@ -3,6 +3,10 @@
 #include "h5util.h"
 
 #include <stdio.h>
+#include <stdlib.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <string.h>
 
 void h5_quiet_begin(h5_quiet *q)
@@ -76,26 +80,37 @@ int h5_attr_write_vlstr(hid_t obj, const char *name, const char *value)
     return rc;
 }
 
-int h5_attr_write_strs(hid_t obj, const char *name, const char *const *values, size_t n)
+/* n strings packed into slots of the longest length + 1 (malloc'd), with
+ * their HDF5 type and the 1-d space of n; NULL when out of memory. */
+static char *pack_strs(const char *const *values, size_t n, hid_t *type, hid_t *space)
 {
     size_t w = 1;
     for (size_t k = 0; k < n; k++)
         if (strlen(values[k]) + 1 > w)
             w = strlen(values[k]) + 1;
-    char buf[16 * 64];
-    if (n * w > sizeof buf)
-        return -1;
-    memset(buf, 0, sizeof buf);
+    char *buf = calloc(n ? n : 1, w);
+    if (!buf)
+        return NULL;
     for (size_t k = 0; k < n; k++)
         memcpy(buf + k * w, values[k], strlen(values[k]));
-    hid_t t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, w);
-    H5Tset_strpad(t, H5T_STR_NULLTERM);
+    *type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(*type, w);
+    H5Tset_strpad(*type, H5T_STR_NULLTERM);
     hsize_t dim = n;
-    hid_t s = H5Screate_simple(1, &dim, NULL);
+    *space = H5Screate_simple(1, &dim, NULL);
+    return buf;
+}
+
+int h5_attr_write_strs(hid_t obj, const char *name, const char *const *values, size_t n)
+{
+    hid_t t, s;
+    char *buf = pack_strs(values, n, &t, &s);
+    if (!buf)
+        return -1;
     int rc = write_attr(obj, name, t, s, buf);
     H5Sclose(s);
     H5Tclose(t);
+    free(buf);
     return rc;
 }
 
@@ -218,6 +233,41 @@ int h5_write_doubles(hid_t loc, const char *name, int rank, const hsize_t *dims,
     if (ds >= 0)
         H5Dclose(ds);
     H5Sclose(s);
+    return rc;
+}
+
+void h5_release_free_lists(void)
+{
+    H5garbage_collect();
+#ifdef __GLIBC__
+    /* and the heap's free pages back to the system */
+    malloc_trim(0);
+#endif
+}
+
+void h5_limit_free_lists(size_t bytes)
+{
+    int all = bytes / 3 > 0x7fffffff ? 0x7fffffff : (int)(bytes / 3), one = all / 4;
+    /* regular, array and block lists: a third each, a quarter of that per list */
+    H5set_free_list_limits(all, one, all, one, all, one);
+}
+
+int h5_write_strs(hid_t loc, const char *name, const char *const *values, size_t n,
+                  const char *meaning)
+{
+    hid_t t, s;
+    char *buf = pack_strs(values, n, &t, &s);
+    if (!buf)
+        return -1;
+    hid_t ds = H5Dcreate2(loc, name, t, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    int rc = ds < 0 || H5Dwrite(ds, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0;
+    if (!rc && meaning)
+        rc |= h5_attr_write_str(ds, "definition", meaning);
+    if (ds >= 0)
+        H5Dclose(ds);
+    H5Sclose(s);
+    H5Tclose(t);
+    free(buf);
     return rc;
 }
 

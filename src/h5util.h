@@ -38,6 +38,18 @@ int h5_attr_read_strs(hid_t obj, const char *name, char (*values)[16], size_t n)
 int h5_write_doubles(hid_t loc, const char *name, int rank, const hsize_t *dims,
                      const double *data, const char *unit, const char *meaning);
 
+/* HDF5 keeps freed blocks in free lists of its own, without bound by
+ * default (tens of MB after reading many chunks).  Gives them back to the
+ * heap, and (glibc) the heap's free pages to the system: */
+void h5_release_free_lists(void);
+/* Bounds them for the process to about bytes in all. */
+void h5_limit_free_lists(size_t bytes);
+
+/* Writes a 1-d dataset of n fixed-length strings with the attribute
+ * definition (unless NULL). */
+int h5_write_strs(hid_t loc, const char *name, const char *const *values, size_t n,
+                  const char *meaning);
+
 /* Creates a chunked dataset of rank `rank` whose leading dimensions marked
  * unlimited start at 0.  dims gives the fixed trailing sizes (leading entries
  * ignored); chunk the chunk shape; fill is the fill value or NULL; deflate the

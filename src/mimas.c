@@ -17,6 +17,7 @@ static const cli_command *const commands[] = {
     &cmd_shearband,
     &cmd_rheology,
     &cmd_xdmf,
+    &cmd_disperse,
     &cmd_plot,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])

@@ -25,6 +25,7 @@
 #include "h5util.h"
 #include "native_layout.h"
 #include "xdmf.h"
+#include "outfile.h"
 
 #define PARTICLE_CHUNK_MAX 32768   /* rows of a per-particle chunk */
 #define ROW_CHUNK 32768            /* rows of a per-contact chunk */
@@ -87,6 +88,8 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
                       mimas_error *err)
 {
     *out = NULL;
+    if (o && o->atomic && mimas_output_check(path, err))
+        return err->code;
     mimas_writer *w = calloc(1, sizeof *w);
     if (!w)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");

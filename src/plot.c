@@ -1,6 +1,7 @@
 #include <config.h>
 
 #include "plot.h"
+#include "outfile.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -104,6 +105,8 @@ static void path_in(const mimas_plot *p, const char *name, char *buf, size_t len
 int mimas_plot_open(mimas_plot **out, const char *png, mimas_error *err)
 {
     *out = NULL;
+    if (mimas_output_check(png, err))
+        return err->code;
     mimas_plot *p = calloc(1, sizeof *p);
     if (!p)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");

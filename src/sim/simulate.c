@@ -10,6 +10,7 @@
 #include "checkpoint.h"
 #include "native.h"
 #include "setup.h"
+#include "xdmf.h"
 
 static double now(void)
 {
@@ -73,8 +74,13 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
     wo.xdmf = 1; /* the sidecar for ParaView, written when the run ends */
     int rc = sim_setup(&s, sc, &plan, err);
     if (!rc && o->resume) {
+        /* the continued file is written under a temporary name and renamed
+         * over RUN.h5 at once, so the writer cannot name it in the sidecar
+         * when it closes: the sidecar is written here after the close */
+        mimas_writer_options wr = wo;
+        wr.xdmf = 0;
         if (!(rc = sim_checkpoint_read(&s, ckpt, err)))
-            rc = reopen_output(o, s.step, &w, &wo, err);
+            rc = reopen_output(o, s.step, &w, &wr, err);
     } else if (!rc) {
         remove(ckpt);
         if (!(rc = mimas_writer_open(&w, o->output, &wo, err))) {
@@ -118,6 +124,11 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
         int rc2 = mimas_writer_close(w, rc ? NULL : err);
         if (!rc)
             rc = rc2;
+        if (!rc && o->resume) {
+            char sidecar[4200];
+            mimas_xdmf_path(o->output, NULL, sidecar, sizeof sidecar);
+            rc = mimas_xdmf_trajectory(o->output, sidecar, err);
+        }
     }
     mimas_frame_free(&f);
     dem_free(&s);
