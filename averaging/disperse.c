@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "disperse_impl.h"
+#include "parallel.h"
 #include "h5util.h"
 
 /* the default fit window: this share of the longest lag */
@@ -300,6 +301,25 @@ static void make_series(sweep *s, size_t n)
         }
 }
 
+/* Under MPI the groups are shared out over the ranks (group g to rank
+ * g mod size); a rank passes over the others' groups counting their cohort
+ * members, so that every member keeps its serial number (and jackknife
+ * group). */
+static int group_is_mine(size_t g)
+{
+    return g % (size_t)mimas_par_size() == (size_t)mimas_par_rank();
+}
+
+static void count_members(sweep *s, size_t lo, size_t hi)
+{
+    size_t nc = mimas_cohorts_count(s->d->cohorts);
+    for (size_t j = lo; j < hi; j++) {
+        uint64_t mask = mimas_cohorts_mask(s->d->cohorts, j);
+        for (size_t k = 0; k < nc; k++)
+            s->members[k] += mask >> k & 1;
+    }
+}
+
 /* One pass over the particles, group by group (contiguous slot ranges). */
 static int run_sweep(sweep *s, mimas_error *err)
 {
@@ -307,6 +327,10 @@ static int run_sweep(sweep *s, mimas_error *err)
     const mimas_disperse_options *o = &s->d->opt;
     for (size_t g = 0; g < s->ngroups && !rc; g++) {
         size_t lo = g * s->N / s->ngroups, hi = (g + 1) * s->N / s->ngroups;
+        if (!group_is_mine(g)) {
+            count_members(s, lo, hi);
+            continue;
+        }
         for (size_t a = lo; a < hi && !rc; a += s->block) {
             size_t n = hi - a < s->block ? hi - a : s->block;
             rc = mimas_traj_store_read(s->store, a, n, s->rec, err);
@@ -329,6 +353,91 @@ static int run_sweep(sweep *s, mimas_error *err)
             rc = mimas_msd_flush(s->vacf, vtwo, 2, err);
     }
     return rc;
+}
+
+/* ---- the ranks' sums merged onto rank 0 (MPI) ---- */
+static size_t cohort_values(const sweep *s)
+{
+    return s->T * MIMAS_DISPERSE_GROUPS * 7;
+}
+
+/* The values of every sum of the sweep: the MSD (and VACF) sums of all
+ * particles and of each group, then the cohort accumulators. */
+static size_t sweep_values(const sweep *s)
+{
+    size_t nc = mimas_cohorts_count(s->d->cohorts), n = 0;
+    for (size_t g = 0; g <= s->ngroups; g++)
+        for (int v = 0; v < 1 + (s->vacf != NULL); v++) {
+            const mimas_msd_sums *m = v ? &s->vsums[g] : &s->sums[g];
+            n += (m->ncomp + 1) * m->nlags;
+        }
+    return n + nc * cohort_values(s);
+}
+
+static int pack_sweep(const void *obj, mimas_bytes *out, mimas_error *err)
+{
+    const sweep *s = obj;
+    size_t nc = mimas_cohorts_count(s->d->cohorts), n = sweep_values(s);
+    if (n * sizeof(double) > out->cap) {
+        unsigned char *p = realloc(out->data, n * sizeof(double));
+        if (!p)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        out->data = p;
+        out->cap = n * sizeof(double);
+    }
+    unsigned char *p = out->data;
+    for (size_t g = 0; g <= s->ngroups; g++)
+        for (int v = 0; v < 1 + (s->vacf != NULL); v++) {
+            const mimas_msd_sums *m = v ? &s->vsums[g] : &s->sums[g];
+            memcpy(p, m->num, m->ncomp * m->nlags * sizeof(double));
+            p += m->ncomp * m->nlags * sizeof(double);
+            memcpy(p, m->count, m->nlags * sizeof(double));
+            p += m->nlags * sizeof(double);
+        }
+    for (size_t k = 0; k < nc; k++) {
+        memcpy(p, s->cstats[k].acc, cohort_values(s) * sizeof(double));
+        p += cohort_values(s) * sizeof(double);
+    }
+    out->n = n * sizeof(double);
+    return MIMAS_OK;
+}
+
+static int merge_sweep(void *obj, const unsigned char *data, size_t bytes, mimas_error *err)
+{
+    sweep *s = obj;
+    if (bytes != sweep_values(s) * sizeof(double))
+        return mimas_error_set(err, MIMAS_EDATA, "the ranks' dispersion sums differ in size");
+    const unsigned char *p = data;
+    double v;
+    for (size_t g = 0; g <= s->ngroups; g++)
+        for (int w = 0; w < 1 + (s->vacf != NULL); w++) {
+            mimas_msd_sums *m = w ? &s->vsums[g] : &s->sums[g];
+            for (size_t i = 0; i < m->ncomp * m->nlags; i++, p += sizeof v) {
+                memcpy(&v, p, sizeof v);
+                m->num[i] += v;
+            }
+            for (size_t i = 0; i < m->nlags; i++, p += sizeof v) {
+                memcpy(&v, p, sizeof v);
+                m->count[i] += v;
+            }
+        }
+    /* cohort accumulators: n, mean[3], m2[3] per frame and group (Chan's merge) */
+    size_t nc = mimas_cohorts_count(s->d->cohorts);
+    for (size_t k = 0; k < nc; k++)
+        for (size_t i = 0; i < s->T * MIMAS_DISPERSE_GROUPS; i++, p += 7 * sizeof v) {
+            double b[7], *a = s->cstats[k].acc + 7 * i;
+            memcpy(b, p, sizeof b);
+            if (b[0] == 0)
+                continue;
+            double na = a[0], nt = na + b[0];
+            for (int c = 0; c < 3; c++) {
+                double d = b[1 + c] - a[1 + c];
+                a[1 + c] += d * b[0] / nt;
+                a[4 + c] += b[4 + c] + d * d * na * b[0] / nt;
+            }
+            a[0] = nt;
+        }
+    return MIMAS_OK;
 }
 
 /* Frames, lags and the fit window. */
@@ -387,6 +496,14 @@ int mimas_disperse_finish(mimas_disperse *d, mimas_error *err)
         rc = sweep_init(&s, d, err);
     if (!rc)
         rc = run_sweep(&s, err);
+    /* under MPI: every rank's groups onto rank 0, which makes the tables */
+    rc = mimas_par_agree(rc, SIZE_MAX, err);
+    if (!rc)
+        rc = mimas_par_reduce(&s, pack_sweep, merge_sweep, err);
+    if (!rc && mimas_par_rank() != 0) {
+        sweep_free(&s);
+        return MIMAS_OK;
+    }
     mimas_disperse_result *r = &d->res;
     r->scratch = mimas_traj_store_on_disk(mimas_traj_store_of(d->traj));
     r->groups = s.ngroups;

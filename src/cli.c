@@ -3,6 +3,8 @@
 #include "cli.h"
 #include "outfile.h"
 
+#include "parallel.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <getopt.h>
@@ -105,6 +107,9 @@ int cli_open_inputs(const cli_command *cmd, cli_inputs *in, int argc, char **arg
 
 int cli_fail(const cli_command *cmd, int status, const char *fmt, ...)
 {
+    /* under MPI every rank agrees on the failure; one of them says it */
+    if (mimas_par_rank() != 0)
+        return status;
     va_list ap;
     fprintf(stderr, "mimas %s: ", cmd->name);
     va_start(ap, fmt);
@@ -268,7 +273,8 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler
         if (c == -1)
             break;
         if (c == 'h') {
-            cli_print_help(cmd, stdout);
+            if (mimas_par_rank() == 0)
+                cli_print_help(cmd, stdout);
             return -1;
         }
         if (c == '?')
@@ -423,7 +429,7 @@ static double seconds(void)
 void cli_progress_begin(cli_progress *p, int quiet)
 {
     memset(p, 0, sizeof *p);
-    p->on = !quiet && isatty(STDERR_FILENO);
+    p->on = !quiet && isatty(STDERR_FILENO) && mimas_par_rank() == 0;
     p->start = p->last = seconds();
 }
 

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "numfmt.h"
+
 int cli_table_option(const cli_command *cmd, cli_table_options *o, size_t k, const char *arg)
 {
     long v;
@@ -82,28 +84,18 @@ void cli_table_header_end(cli_table *t)
     t->col = 0;
 }
 
-/* The shortest of %.15g, %.16g, %.17g that reads back as v: exact, and
- * 0.025 rather than 0.025000000000000001. */
-static void exact(char *buf, size_t len, double v)
-{
-    for (int p = 15; p <= 17; p++) {
-        snprintf(buf, len, "%.*g", p, v);
-        if (strtod(buf, NULL) == v)
-            return;
-    }
-}
-
 void cli_table_double(cli_table *t, double v)
 {
     separator(t);
-    char buf[40];
+    char buf[MIMAS_NUMFMT_MAX];
     if (isnan(v))
         fputs("nan", t->fp);
     else if (t->o.digits)
         fprintf(t->fp, "%.*g", t->o.digits, v);
     else {
-        exact(buf, sizeof buf, v);
-        fputs(buf, t->fp);
+        /* the shortest decimal that reads back as v (0.025, not 0.025000000000000001):
+         * exact, and several times faster than printf's 15-17 digits */
+        fwrite(buf, 1, mimas_format_double(v, buf), t->fp);
     }
 }
 

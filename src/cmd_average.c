@@ -9,18 +9,21 @@
 #include <unistd.h>
 
 #include "average.h"
+#include "cli_frames.h"
 #include "cli_table.h"
 #include "commands.h"
 #include "output_h5.h"
 #include "fields.h"
+#include "parallel.h"
 #include "reader.h"
 
 static const cli_option options[] = {
     {"grid", 0, "SPEC", "none, x=LO:HI:N[,y=..][,z=..], or r=LO:HI:N[,phi=LO:HI:N][,z=LO:HI:N]"},
-    {"weight", 0, "SPEC", "bins (exact overlaps), bins:center, gauss:w=W[,cutoff=C], lucy:c=C, "
-                          "shepard:w=W[,cutoff=C], voronoi (per-particle values of mimas "
-                          "voronoi -o, by the centre's cell), voronoi:w=W[,cutoff=C] (by a "
-                          "Gaussian)"},
+    {"weight", 0, "SPEC", "bins (exact overlaps), bins:center, gauss:w=W[,cutoff=C] (the "
+                          "Gaussian cut at C W, default 3, renormalised; ,shift: shifted to 0 "
+                          "there), lucy:c=C, shepard:w=W[,cutoff=C], voronoi (per-particle "
+                          "values of mimas voronoi -o, by the centre's cell), "
+                          "voronoi:w=W[,cutoff=C] (by a Gaussian)"},
     {"fields", 0, "LIST", "fields to write (comma list; 'stress' selects stress_*; default all)"},
     {"axis", 0, "X0,Y0,Z0,DX,DY,DZ", "axis of cylindrical grids (default: z through the origin)"},
     {"from", 0, "T0", "first time to use (s)"},
@@ -221,6 +224,64 @@ static void list_fields(void)
     }
 }
 
+/* ---- frames split over MPI ranks (docs/parallel.md) ---- */
+/* --per-frame: one frame's average with its step and time, written on rank 0
+ * in frame order. */
+typedef struct per_frame_sink {
+    const mimas_average_options *o;
+    int cyl;
+    const unsigned char *want;
+    cli_table *tw;          /* the table, or NULL */
+    mimas_fields_file *ff;  /* -o, or NULL */
+    mimas_average *other;   /* a frame's average unpacked on rank 0 */
+    int header_done;
+} per_frame_sink;
+
+static int pack_frame(const mimas_average *one, const mimas_frame *f, mimas_bytes *out,
+                      mimas_error *err)
+{
+    int rc = mimas_average_pack(one, out, err);
+    size_t head = sizeof f->step + sizeof f->time;
+    if (!rc && out->n + head > out->cap) {
+        unsigned char *p = realloc(out->data, out->n + head);
+        if (!p)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        out->data = p;
+        out->cap = out->n + head;
+    }
+    if (!rc) {
+        memcpy(out->data + out->n, &f->step, sizeof f->step);
+        memcpy(out->data + out->n + sizeof f->step, &f->time, sizeof f->time);
+        out->n += head;
+    }
+    return rc;
+}
+
+static int write_frame(void *ctx, size_t position, const unsigned char *data, size_t n,
+                       mimas_error *err)
+{
+    (void)position;
+    per_frame_sink *s = ctx;
+    mimas_frame f; /* only step and time */
+    size_t head = sizeof f.step + sizeof f.time;
+    if (n < head)
+        return mimas_error_set(err, MIMAS_EDATA, "a per-frame result is truncated");
+    memcpy(&f.step, data + n - head, sizeof f.step);
+    memcpy(&f.time, data + n - sizeof f.time, sizeof f.time);
+    mimas_average_reset(s->other);
+    int rc = mimas_average_merge(s->other, data, n - head, err);
+    if (!rc && s->tw) {
+        if (!s->header_done++)
+            write_header(s->tw, mimas_average_grid(s->other), s->o->grid_none, s->cyl,
+                         s->want, 0, 1);
+        if (write_rows(s->tw, s->other, s->o->grid_none, s->want, 0, &f))
+            rc = mimas_error_set(err, MIMAS_EIO, "cannot write the table");
+    }
+    if (!rc && s->ff)
+        rc = mimas_fields_append_frame(s->ff, s->other, f.step, f.time, err);
+    return rc;
+}
+
 static int run(const cli_command *cmd, int argc, char **argv)
 {
     average_args a = {0};
@@ -263,74 +324,84 @@ static int run(const cli_command *cmd, int argc, char **argv)
         cli_inputs_free(&in);
         return rc < 0 ? 0 : rc;
     }
-    /* outputs: the table (a temporary name renamed at the end, or standard
-     * output) unless only -o was asked for; the HDF5 file */
+    /* outputs, on rank 0 only (under MPI the others only compute): the table
+     * (a temporary name renamed at the end, or standard output) unless only
+     * -o was asked for; the HDF5 file */
+    int root = mimas_par_rank() == 0;
     cli_output table = {0};
     int status = MIMAS_OK;
-    if (a.tsv || !a.output)
+    if (root && (a.tsv || !a.output))
         status = cli_output_open(&table, a.tsv, &err);
     FILE *out = table.fp;
     cli_table tw;
     cli_table_start(&tw, out, &a.table);
-    mimas_fields_file *ff = NULL;
-    if (!status && a.output)
-        status = mimas_fields_open(&ff, a.output, want, &err);
+    per_frame_sink sink = {&o, cyl, want, out ? &tw : NULL, NULL, NULL, 0};
+    if (!status && root && a.output)
+        status = mimas_fields_open(&sink.ff, a.output, want, &err);
     mimas_average *one = NULL; /* the current frame alone (--per-frame) */
+    mimas_par_ordered *order = NULL;
     if (!status && a.per_frame) {
         mimas_average_options o1 = o;
         o1.spread = 0;
         status = mimas_average_create(&one, &o1, &err);
+        if (!status && root)
+            status = mimas_average_create(&sink.other, &o1, &err);
+        if (!status)
+            status = mimas_par_ordered_open(&order, write_frame, &sink, &err);
     }
+    status = mimas_par_agree(status, SIZE_MAX, &err);
     mimas_frame f;
     mimas_frame_init(&f);
-    int header_done = 0;
+    mimas_bytes packed = {0};
     cli_progress prog;
     cli_progress_start(&prog, &in);
     cli_progress_total(&prog, r);
-    size_t nread = 0;
-    while (!status && (status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
-        cli_progress_frame(&prog, cmd, ++nread, (long long)f.step, f.time);
-        int take = cli_window_take(&a.window, &f, argv[first], &err);
-        if (take < 0) {
-            status = MIMAS_EUSAGE;
-            break;
-        }
-        if (!take)
-            continue;
+    cli_frames frames;
+    cli_frames_init(&frames, r, &a.window, argv[first]);
+    while (!status && (status = cli_frames_next(&frames, &f, &err)) == MIMAS_OK) {
         status = mimas_average_add(avg, &f, &err);
+        cli_progress_frame(&prog, cmd, frames.consumed, (long long)f.step, f.time);
         if (!status && one) {
             mimas_average_reset(one);
             status = mimas_average_add(one, &f, &err);
-            if (!status && out) {
-                if (!header_done++)
-                    write_header(&tw, mimas_average_grid(one), o.grid_none, cyl, want, 0, 1);
-                if (write_rows(&tw, one, o.grid_none, want, 0, &f))
-                    status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
-            }
-            if (!status && ff)
-                status = mimas_fields_append_frame(ff, one, f.step, f.time, &err);
+            if (!status)
+                status = pack_frame(one, &f, &packed, &err);
+            if (!status)
+                status = mimas_par_ordered_put(order, frames.position, &packed, &err);
         }
-        if (status && status != MIMAS_EIO)
+        if (status && status != MIMAS_EIO && status != MIMAS_END)
             mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
     }
     cli_progress_done(&prog);
+    if (order)
+        status = mimas_par_ordered_finish(order, status, frames.position, &err);
+    else
+        status = mimas_par_agree(status, frames.position, &err);
+    if (status == MIMAS_END)
+        status = mimas_average_reduce(avg, &err);
+    if (status == MIMAS_OK)
+        status = MIMAS_END;
     size_t skipped = mimas_reader_skipped(r);
+    mimas_bytes_free(&packed);
     mimas_frame_free(&f);
     mimas_reader_close(r);
     cli_inputs_free(&in);
     mimas_average_free(one);
-    if (skipped && status == MIMAS_END)
+    mimas_average_free(sink.other);
+    mimas_par_ordered_free(order);
+    mimas_fields_file *ff = sink.ff;
+    if (root && skipped && status == MIMAS_END)
         fprintf(stderr, "mimas average: skipped %zu frames whose contact data were missing\n",
                 skipped);
-    if (status == MIMAS_END && mimas_average_frames(avg) == 0)
+    if (status == MIMAS_END && frames.selected == 0)
         status = mimas_error_set(&err, MIMAS_EDATA, "%s: no frame in the selected time range",
                                  argv[first]);
-    if (status == MIMAS_END && out && !a.per_frame) {
+    if (root && status == MIMAS_END && out && !a.per_frame) {
         write_header(&tw, mimas_average_grid(avg), o.grid_none, cyl, want, a.errors, 0);
         if (write_rows(&tw, avg, o.grid_none, want, a.errors, NULL))
             status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
     }
-    if (status == MIMAS_END && ff) {
+    if (root && status == MIMAS_END && ff) {
         char *line = cli_command_line(argc, argv);
         status = mimas_fields_finish(ff, avg, line, &err);
         ff = NULL;
@@ -344,6 +415,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (closed)
         status = closed;
     mimas_fields_abort(ff);
+    /* a failure of rank 0's output reaches the others too */
+    status = mimas_par_agree(status, SIZE_MAX, &err);
     if (status != MIMAS_END) {
         if (status == MIMAS_EIO && a.output && !strstr(err.msg, a.output))
             mimas_error_prefix(&err, "%s", a.output);
@@ -361,8 +434,10 @@ const cli_command cmd_average = {
     "contact and total stress (compression positive), pressure, shear stress,\n"
     "stress ratio, granular temperature, coordination number, fabric and wall\n"
     "force density (docs/fields.md).  Time averages are taken of the primary\n"
-    "sums; --errors adds the standard error over frames.  Writes a TSV table,\n"
-    "one row per cell: the gridded cell-centre coordinates, then the fields.",
+    "sums; --errors adds the standard error over frames.  Kernels are integrated\n"
+    "over the directions a grid leaves out, and averaged exactly over the azimuth\n"
+    "on cylindrical grids without phi cells.  Writes a TSV table, one row per\n"
+    "cell: the gridded cell-centre coordinates, then the fields.",
     options,
     sizeof options / sizeof options[0],
     1,

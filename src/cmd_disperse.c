@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "commands.h"
+#include "parallel.h"
 #include "disperse.h"
 #include "fit.h"
 #include "h5util.h"
@@ -300,8 +301,11 @@ static int stream(disperse_args *a, cli_inputs *in, mimas_reader *r, const char 
     mimas_frame_init(&f);
     cli_progress prog;
     cli_progress_start(&prog, in);
+    cli_progress_total(&prog, r);
+    size_t nread = 0;
     int status;
     while ((status = mimas_reader_next(r, &f, err)) == MIMAS_OK) {
+        cli_progress_frame(&prog, a->cmd, ++nread, (long long)f.step, f.time);
         int take = cli_window_take(&a->window, &f, input, err);
         if (take < 0) {
             status = MIMAS_EUSAGE;
@@ -315,7 +319,6 @@ static int stream(disperse_args *a, cli_inputs *in, mimas_reader *r, const char 
                 mimas_error_prefix(err, "%s: step %lld", input, (long long)f.step);
             break;
         }
-        cli_progress_frame(&prog, a->cmd, mimas_disperse_frames(d), (long long)f.step, f.time);
     }
     cli_progress_done(&prog);
     mimas_frame_free(&f);
@@ -430,16 +433,21 @@ static int run(const cli_command *cmd, int argc, char **argv)
     }
     int status = stream(&a, &in, r, argv[first], d, &err);
     mimas_reader_close(r);
+    /* under MPI every rank reads every frame; the analysis splits the particles */
+    status = mimas_par_agree(status, SIZE_MAX, &err);
     if (!status)
         status = mimas_disperse_finish(d, &err);
     cli_progress_done(&prog);
     if (status && status != MIMAS_EUSAGE && status != MIMAS_EIO && !strstr(err.msg, argv[first]))
         mimas_error_prefix(&err, "%s", argv[first]);
+    /* under MPI the tables are rank 0's (the others' sums are merged into
+     * its own); the others end with its status */
     const mimas_disperse_result *res = mimas_disperse_result_of(d);
-    if (!status) {
+    if (!status && mimas_par_rank() == 0) {
         warnings(&a, &in, res, scratch);
         status = write_outputs(&a, res, argc, argv, &err);
     }
+    status = mimas_par_share(status, NULL, 0, &err);
     mimas_disperse_free(d);
     cli_inputs_free(&in);
     if (status)

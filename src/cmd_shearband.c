@@ -8,9 +8,11 @@
 #include <string.h>
 
 #include "average.h"
+#include "cli_frames.h"
 #include "cli_table.h"
 #include "commands.h"
 #include "fieldset.h"
+#include "parallel.h"
 #include "reader.h"
 #include "shearband.h"
 
@@ -108,33 +110,44 @@ static int average_input(const band_args *a, const cli_inputs *in, mimas_reader 
     cli_progress prog;
     cli_progress_start(&prog, in);
     cli_progress_total(&prog, r);
-    size_t nread = 0;
-    while (!status && (status = mimas_reader_next(r, &f, err)) == MIMAS_OK) {
-        cli_progress_frame(&prog, a->cmd, ++nread, (long long)f.step, f.time);
-        int take = cli_window_take(&w, &f, input, err);
-        if (take < 0)
-            status = MIMAS_EUSAGE;
-        if (take <= 0)
-            continue;
-        if (!avg) {
-            char spec[512];
-            status = mimas_band_choose_grid(&f, &o.grid, spec, sizeof spec, err);
-            if (!status)
-                status = mimas_average_create(&avg, &o, err);
-            if (!status)
-                fprintf(stderr, "mimas shearband: averaging the particles with --weight bins %s\n",
-                        spec);
-        }
-        if (!status)
-            status = mimas_average_add(avg, &f, err);
-        if (status && status != MIMAS_EIO)
-            mimas_error_prefix(err, "%s: step %lld", input, (long long)f.step);
-    }
-    cli_progress_done(&prog);
-    mimas_frame_free(&f);
-    if (status == MIMAS_END && !avg)
+    cli_frames frames;
+    cli_frames_init(&frames, r, &w, input);
+    /* the grid comes from the first frame of the selection (rank 0's first
+     * frame under MPI, shared with the others) */
+    if (!status)
+        status = cli_frames_next(&frames, &f, err);
+    char spec[512] = "";
+    if (mimas_par_rank() == 0 && status == MIMAS_OK)
+        status = mimas_band_choose_grid(&f, &o.grid, spec, sizeof spec, err);
+    if (mimas_par_rank() == 0 && status == MIMAS_END)
         status = mimas_error_set(err, MIMAS_EDATA, "%s: no frame in the selected time range",
                                  input);
+    int have = status == MIMAS_OK;
+    status = mimas_par_share(mimas_par_rank() == 0 ? status : MIMAS_OK, &o.grid, sizeof o.grid,
+                             err);
+    if (!status) {
+        status = mimas_average_create(&avg, &o, err);
+        if (!status && mimas_par_rank() == 0)
+            fprintf(stderr, "mimas shearband: averaging the particles with --weight bins %s\n",
+                    spec);
+        if (!status && !have)
+            status = MIMAS_END; /* this rank has no frame at all */
+    }
+    while (status == MIMAS_OK) {
+        status = mimas_average_add(avg, &f, err);
+        if (status && status != MIMAS_EIO)
+            mimas_error_prefix(err, "%s: step %lld", input, (long long)f.step);
+        cli_progress_frame(&prog, a->cmd, frames.consumed, (long long)f.step, f.time);
+        if (!status)
+            status = cli_frames_next(&frames, &f, err);
+    }
+    status = mimas_par_agree(status, frames.position, err);
+    if (status == MIMAS_END)
+        status = mimas_average_reduce(avg, err);
+    if (status == MIMAS_OK)
+        status = MIMAS_END;
+    cli_progress_done(&prog);
+    mimas_frame_free(&f);
     if (status == MIMAS_END)
         status = mimas_fieldset_from_average(fs, avg, input, err);
     mimas_average_free(avg);
@@ -221,17 +234,21 @@ static int run(const cli_command *cmd, int argc, char **argv)
     cli_inputs_free(&in);
     if (rc)
         return rc < 0 ? 0 : rc;
+    /* under MPI the fits and the output are rank 0's (its average holds every
+     * rank's frames); the others end with its status */
+    int root = mimas_par_rank() == 0;
     mimas_band *b = NULL;
-    if (!status)
+    if (!status && root)
         status = mimas_band_analyse(fs, &a.o, &b, &err);
     mimas_fieldset_close(fs);
     mimas_band_plot_options po = {a.fenistein ? a.rs : 0, a.fenistein ? a.h : 0};
-    if (!status && a.plot)
+    if (!status && root && a.plot)
         status = mimas_band_plot(b, &po, a.plot, &err);
     band_table t = {&a, b};
-    if (!status)
+    if (!status && root)
         status = cli_write_table(a.output, write_table, &t, &err);
     mimas_band_free(b);
+    status = mimas_par_share(status, NULL, 0, &err);
     if (status)
         return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
     return 0;

@@ -4,13 +4,16 @@
 #include <config.h>
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli_table.h"
+#include "cli_frames.h"
 #include "commands.h"
 #include "native.h"
+#include "parallel.h"
 #include "reader.h"
 #include "voro_walls.h"
 #include "voronoi.h"
@@ -30,10 +33,14 @@ static const cli_option options[] = {
     {"tsv", 0, "FILE", "write the table to FILE, or - for standard output (the default "
                        "without -o)"},
     {"threads", 0, "N", "OpenMP threads (default: OMP_NUM_THREADS or all cores)"},
+    {"from", 0, "T0", "first time to use (s)"},
+    {"to", 0, "T1", "last time to use (s)"},
+    {"every", 0, "K", "use every K-th frame of those selected"},
     CLI_TABLE_OPTIONS,
 };
 
-enum { O_RADICAL, O_WALLS, O_EXTENT, O_VWIDTH, O_EXCLUDE, O_OUTPUT, O_TSV, O_THREADS, O_TABLE };
+enum { O_RADICAL, O_WALLS, O_EXTENT, O_VWIDTH, O_EXCLUDE, O_OUTPUT, O_TSV, O_THREADS, O_FROM,
+       O_TO, O_EVERY, O_TABLE };
 
 #define MAX_WALLS 16
 
@@ -44,6 +51,7 @@ typedef struct voronoi_args {
     int32_t types[64];
     const char *tsv, *output;
     cli_table_options table;
+    cli_window window;
 } voronoi_args;
 
 static int parse_types(voronoi_args *a, const char *arg)
@@ -75,6 +83,9 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_OUTPUT: a->output = arg; return 0;
     case O_TSV: a->tsv = arg; return 0;
     case O_THREADS: return cli_parse_threads(a->cmd, arg, &a->o.threads);
+    case O_FROM:
+    case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
+    case O_EVERY: return cli_window_every(a->cmd, &a->window, arg);
     default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
 }
@@ -122,6 +133,84 @@ static int write_rows(const mimas_voronoi *v, const mimas_frame *f, cli_table *t
     return ferror(t->fp) ? mimas_error_set(err, MIMAS_EIO, "cannot write the table") : MIMAS_OK;
 }
 
+/* ---- one frame's result, written on rank 0 in frame order ---- */
+typedef struct voronoi_sink {
+    FILE *out;          /* the table, or NULL */
+    mimas_writer *w;    /* -o, or NULL */
+    mimas_frame frame;  /* a frame unpacked from a result */
+} voronoi_sink;
+
+/* What a frame's result holds: its table rows (formatted as the table's
+ * options say), its frame with the Voronoi columns. */
+typedef struct result_parts {
+    int rows, frame;
+    const cli_table_options *table;
+} result_parts;
+
+/* A frame's result: the length of its table rows, the rows, then the packed
+ * frame (each part empty when not wanted). */
+static int pack_result(const mimas_voronoi *v, const mimas_frame *f, const result_parts *parts,
+                       mimas_bytes *out, mimas_error *err)
+{
+    char *text = NULL;
+    size_t len = 0;
+    if (parts->rows) {
+        FILE *m = open_memstream(&text, &len);
+        if (!m)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        cli_table t;
+        cli_table_start(&t, m, parts->table);
+        int rc = write_rows(v, f, &t, err);
+        int bad = cli_table_end(&t);
+        if (fclose(m) || rc || bad) {
+            free(text);
+            return rc ? rc : mimas_error_set(err, MIMAS_EIO, "out of memory");
+        }
+    }
+    mimas_bytes packed = {0};
+    int rc = parts->frame ? mimas_frame_pack(f, &packed, err) : MIMAS_OK;
+    uint64_t n = len;
+    size_t total = sizeof n + len + packed.n;
+    if (!rc && total > out->cap) {
+        unsigned char *p = realloc(out->data, total);
+        if (!p)
+            rc = mimas_error_set(err, MIMAS_EIO, "out of memory");
+        else
+            out->data = p, out->cap = total;
+    }
+    if (!rc) {
+        memcpy(out->data, &n, sizeof n);
+        if (len)
+            memcpy(out->data + sizeof n, text, len);
+        if (packed.n)
+            memcpy(out->data + sizeof n + len, packed.data, packed.n);
+        out->n = total;
+    }
+    free(text);
+    mimas_bytes_free(&packed);
+    return rc;
+}
+
+static int write_frame(void *ctx, size_t position, const unsigned char *data, size_t n,
+                       mimas_error *err)
+{
+    (void)position;
+    voronoi_sink *s = ctx;
+    uint64_t len;
+    if (n < sizeof len)
+        return mimas_error_set(err, MIMAS_EDATA, "a per-frame result is truncated");
+    memcpy(&len, data, sizeof len);
+    if (len > n - sizeof len)
+        return mimas_error_set(err, MIMAS_EDATA, "a per-frame result is truncated");
+    if (s->out && len && fwrite(data + sizeof len, 1, len, s->out) != len)
+        return mimas_error_set(err, MIMAS_EIO, "cannot write the table");
+    if (!s->w)
+        return MIMAS_OK;
+    size_t at = sizeof len + (size_t)len;
+    int rc = mimas_frame_unpack(&s->frame, data + at, n - at, err);
+    return rc ? rc : mimas_writer_append(s->w, &s->frame, err);
+}
+
 static int run(const cli_command *cmd, int argc, char **argv)
 {
     voronoi_args a;
@@ -144,57 +233,72 @@ static int run(const cli_command *cmd, int argc, char **argv)
         cli_inputs_free(&in);
         return rc < 0 ? 0 : rc;
     }
-    /* outputs: the table unless only -o was asked for; the native file */
+    /* outputs, on rank 0 only (under MPI every rank tessellates its frames and
+     * sends rank 0 the rows and the frame, written there in frame order): the
+     * table unless only -o was asked for; the native file */
+    int root = mimas_par_rank() == 0;
     cli_output table = {0};
     int status = MIMAS_OK;
-    if (a.tsv || !a.output)
+    if (root && (a.tsv || !a.output))
         status = cli_output_open(&table, a.tsv, &err);
     FILE *out = table.fp;
     cli_table tw;
     cli_table_start(&tw, out, &a.table);
     if (out)
         write_header(&tw);
-    mimas_writer *w = NULL;
+    voronoi_sink sink = {out, NULL, {0}};
+    mimas_frame_init(&sink.frame);
     char *provenance = cli_command_line(argc, argv);
-    if (!status && a.output) {
+    if (!status && root && a.output) {
         mimas_writer_options wo;
         mimas_writer_options_default(&wo);
         wo.atomic = 1; /* no partial output */
         wo.xdmf = 1;
         wo.provenance = provenance;
-        status = mimas_writer_open(&w, a.output, &wo, &err);
+        status = mimas_writer_open(&sink.w, a.output, &wo, &err);
     }
+    mimas_par_ordered *order = NULL;
+    if (!status)
+        status = mimas_par_ordered_open(&order, write_frame, &sink, &err);
+    status = mimas_par_agree(status, SIZE_MAX, &err);
+    result_parts parts = {a.tsv || !a.output, a.output != NULL, &a.table};
     mimas_frame f;
     mimas_frame_init(&f);
+    mimas_bytes result = {0};
     cli_progress prog;
     cli_progress_start(&prog, &in);
     cli_progress_total(&prog, r);
-    size_t frames = 0;
-    while (!status && (status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
+    cli_frames frames;
+    cli_frames_init(&frames, r, &a.window, argv[first]);
+    while (!status && (status = cli_frames_next(&frames, &f, &err)) == MIMAS_OK) {
         status = mimas_voronoi_frame(vor, &f, &err);
         if (status && status != MIMAS_EIO)
             mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
-        if (!status && out)
-            status = write_rows(vor, &f, &tw, &err);
-        if (!status && w)
-            status = mimas_writer_append(w, &f, &err);
-        cli_progress_frame(&prog, cmd, ++frames, (long long)f.step, f.time);
+        if (!status)
+            status = pack_result(vor, &f, &parts, &result, &err);
+        if (!status)
+            status = mimas_par_ordered_put(order, frames.position, &result, &err);
+        cli_progress_frame(&prog, cmd, frames.consumed, (long long)f.step, f.time);
     }
     cli_progress_done(&prog);
+    status = mimas_par_ordered_finish(order, status, frames.position, &err);
+    mimas_par_ordered_free(order);
     size_t skipped = mimas_reader_skipped(r);
+    mimas_bytes_free(&result);
     mimas_frame_free(&f);
+    mimas_frame_free(&sink.frame);
     mimas_reader_close(r);
     cli_inputs_free(&in);
     mimas_voronoi_free(vor);
-    if (status == MIMAS_END && frames == 0)
+    if (status == MIMAS_END && frames.selected == 0)
         status = mimas_error_set(&err, MIMAS_EDATA, "%s: no frames", argv[first]);
-    if (w) {
+    if (sink.w) {
         if (status == MIMAS_END) {
-            int closed = mimas_writer_close(w, &err);
+            int closed = mimas_writer_close(sink.w, &err);
             if (closed)
                 status = closed;
         } else {
-            mimas_writer_abort(w);
+            mimas_writer_abort(sink.w);
         }
     }
     free(provenance);
@@ -202,9 +306,10 @@ static int run(const cli_command *cmd, int argc, char **argv)
     int closed = cli_output_close(&table, status == MIMAS_END, &err);
     if (closed)
         status = closed;
+    status = mimas_par_agree(status, SIZE_MAX, &err);
     if (status != MIMAS_END)
         return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
-    if (skipped)
+    if (skipped && root)
         fprintf(stderr, "mimas voronoi: skipped %zu frames whose contact data were missing\n",
                 skipped);
     return 0;
