@@ -114,14 +114,6 @@ int h5_attr_write_strs(hid_t obj, const char *name, const char *const *values, s
     return rc;
 }
 
-int h5_attr_write_ints(hid_t obj, const char *name, const int *values, size_t n)
-{
-    hsize_t dim = n;
-    hid_t s = n == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &dim, NULL);
-    int rc = write_attr(obj, name, H5T_NATIVE_INT, s, values);
-    H5Sclose(s);
-    return rc;
-}
 
 int h5_attr_write_double(hid_t obj, const char *name, double value)
 {
@@ -137,7 +129,27 @@ static hid_t open_attr(hid_t obj, const char *name)
     return H5Aexists(obj, name) > 0 ? H5Aopen(obj, name, H5P_DEFAULT) : H5I_INVALID_HID;
 }
 
-int h5_attr_read_ints(hid_t obj, const char *name, int *values, size_t n)
+/* a 1-d (or scalar for n = 1) attribute of n values of memory type t */
+static int write_array_attr(hid_t obj, const char *name, hid_t t, const void *values, size_t n)
+{
+    hsize_t dim = n;
+    hid_t s = n == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &dim, NULL);
+    int rc = write_attr(obj, name, t, s, values);
+    H5Sclose(s);
+    return rc;
+}
+
+int h5_attr_write_doubles(hid_t obj, const char *name, const double *values, size_t n)
+{
+    return write_array_attr(obj, name, H5T_NATIVE_DOUBLE, values, n);
+}
+
+int h5_attr_write_int64s(hid_t obj, const char *name, const int64_t *values, size_t n)
+{
+    return write_array_attr(obj, name, H5T_NATIVE_INT64, values, n);
+}
+
+static int read_array_attr(hid_t obj, const char *name, hid_t t, void *values, size_t n)
 {
     hid_t a = open_attr(obj, name);
     if (a < 0)
@@ -146,10 +158,30 @@ int h5_attr_read_ints(hid_t obj, const char *name, int *values, size_t n)
     hssize_t count = H5Sget_simple_extent_npoints(s);
     H5Sclose(s);
     int rc = -1;
-    if (count >= 1 && (size_t)count <= n && H5Aread(a, H5T_NATIVE_INT, values) >= 0)
+    if (count >= 1 && (size_t)count <= n && H5Aread(a, t, values) >= 0)
         rc = (int)count;
     H5Aclose(a);
     return rc;
+}
+
+int h5_attr_read_doubles(hid_t obj, const char *name, double *values, size_t n)
+{
+    return read_array_attr(obj, name, H5T_NATIVE_DOUBLE, values, n);
+}
+
+int h5_attr_read_int64s(hid_t obj, const char *name, int64_t *values, size_t n)
+{
+    return read_array_attr(obj, name, H5T_NATIVE_INT64, values, n);
+}
+
+int h5_attr_write_ints(hid_t obj, const char *name, const int *values, size_t n)
+{
+    return write_array_attr(obj, name, H5T_NATIVE_INT, values, n);
+}
+
+int h5_attr_read_ints(hid_t obj, const char *name, int *values, size_t n)
+{
+    return read_array_attr(obj, name, H5T_NATIVE_INT, values, n);
 }
 
 int h5_attr_read_str(hid_t obj, const char *name, char *buf, size_t len)
@@ -275,7 +307,9 @@ hid_t h5_create_growing(hid_t loc, const char *name, hid_t type, int rank, int n
                         const hsize_t *dims, const hsize_t *chunk, const void *fill,
                         int deflate)
 {
-    hsize_t cur[4], max[4];
+    hsize_t cur[8], max[8];
+    if (rank < 1 || rank > 8)
+        return H5I_INVALID_HID;
     for (int d = 0; d < rank; d++) {
         cur[d] = d < n_unlimited ? 0 : dims[d];
         max[d] = d < n_unlimited ? H5S_UNLIMITED : dims[d];

@@ -6,6 +6,7 @@
 
 #include <hdf5.h>
 #include <stddef.h>
+#include <stdint.h>
 
 /* While "quiet", HDF5 prints nothing; mimas reports errors itself. */
 typedef struct h5_quiet {
@@ -26,6 +27,12 @@ int h5_attr_write_vlstr(hid_t obj, const char *name, const char *value);
 int h5_attr_write_strs(hid_t obj, const char *name, const char *const *values, size_t n);
 int h5_attr_write_ints(hid_t obj, const char *name, const int *values, size_t n);
 int h5_attr_write_double(hid_t obj, const char *name, double value);
+/* 1-d attributes of n values (a scalar for n = 1) and their reading (up to
+ * n values; the number stored, or -1). */
+int h5_attr_write_doubles(hid_t obj, const char *name, const double *values, size_t n);
+int h5_attr_write_int64s(hid_t obj, const char *name, const int64_t *values, size_t n);
+int h5_attr_read_doubles(hid_t obj, const char *name, double *values, size_t n);
+int h5_attr_read_int64s(hid_t obj, const char *name, int64_t *values, size_t n);
 /* Reads up to n ints; returns the number stored in the attribute, or -1. */
 int h5_attr_read_ints(hid_t obj, const char *name, int *values, size_t n);
 /* Reads a scalar string attribute (fixed or variable length); -1 if absent. */

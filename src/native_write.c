@@ -65,6 +65,12 @@ struct mimas_writer {
     size_t npcols;
     native_col *pcols;
     flat_table contacts, walls;
+    /* format 1.1: the tube (fixed over the file) and the gas fields */
+    mimas_tube tube;
+    int has_gas;
+    size_t gas_cells[3];
+    double gas_origin[3], gas_spacing[3];
+    hid_t gas_ds[3];                /* pressure, porosity, velocity */
     /* scratch for index -> id conversion */
     int64_t *ids;
     size_t ids_cap;
@@ -298,6 +304,60 @@ static int create_particles(mimas_writer *w, const mimas_frame *f, mimas_error *
     return MIMAS_OK;
 }
 
+/* The tube as attributes of /parameters/tube; HDF5 attributes carry no
+ * attributes of their own, so each unit is the attribute NAME_unit. */
+static int create_tube(mimas_writer *w, const mimas_tube *t, mimas_error *err)
+{
+    hid_t g = make_group(w->file, NATIVE_TUBE);
+    if (g < 0)
+        return h5fail(w, err, "create " NATIVE_TUBE);
+    int bad = h5_attr_write_doubles(g, "origin", t->origin, 3) ||
+              h5_attr_write_str(g, "origin_unit", "m") ||
+              h5_attr_write_doubles(g, "direction", t->direction, 3) ||
+              h5_attr_write_str(g, "direction_unit", "1") ||
+              h5_attr_write_double(g, "radius", t->radius) ||
+              h5_attr_write_str(g, "radius_unit", "m") ||
+              h5_attr_write_double(g, "length", t->length) ||
+              h5_attr_write_str(g, "length_unit", "m");
+    H5Gclose(g);
+    return bad ? h5fail(w, err, "write the tube attributes") : MIMAS_OK;
+}
+
+static const char *const gas_names[3] = {"pressure", "porosity", "velocity"};
+static const char *const gas_units[3] = {"Pa", "1", "m s-1"};
+
+/* /fields/gas: the grid as attributes, each field an H5MD time-dependent
+ * element of shape (frames, nz, ny, nx[, 3]) sharing the particles' clock */
+static int create_gas(mimas_writer *w, const mimas_gas *gs, mimas_error *err)
+{
+    w->has_gas = 1;
+    memcpy(w->gas_cells, gs->cells, sizeof w->gas_cells);
+    memcpy(w->gas_origin, gs->origin, sizeof w->gas_origin);
+    memcpy(w->gas_spacing, gs->spacing, sizeof w->gas_spacing);
+    hid_t g = make_group(w->file, NATIVE_GAS);
+    if (g < 0)
+        return h5fail(w, err, "create " NATIVE_GAS);
+    int64_t cells[3] = {(int64_t)gs->cells[0], (int64_t)gs->cells[1], (int64_t)gs->cells[2]};
+    int bad = h5_attr_write_doubles(g, "origin", gs->origin, 3) ||
+              h5_attr_write_str(g, "origin_unit", "m") ||
+              h5_attr_write_doubles(g, "spacing", gs->spacing, 3) ||
+              h5_attr_write_str(g, "spacing_unit", "m") || h5_attr_write_int64s(g, "cells", cells, 3);
+    H5Gclose(g);
+    if (bad)
+        return h5fail(w, err, "write the gas grid attributes");
+    for (int k = 0; k < 3; k++) {
+        char path[128];
+        snprintf(path, sizeof path, NATIVE_GAS "/%s", gas_names[k]);
+        hsize_t dims[5] = {0, gs->cells[2], gs->cells[1], gs->cells[0], 3};
+        hsize_t chunk[5] = {1, gs->cells[2], gs->cells[1], gs->cells[0], 3};
+        w->gas_ds[k] = make_element(w, path, H5T_IEEE_F64LE, k == 2 ? 5 : 4, 1, dims, chunk, NULL,
+                                    w->opt.deflate, gas_units[k]);
+        if (w->gas_ds[k] < 0)
+            return h5fail(w, err, "create the gas fields");
+    }
+    return MIMAS_OK;
+}
+
 static int create_flat(mimas_writer *w, flat_table *t, const void *tab, mimas_error *err)
 {
     hid_t g = make_group(w->file, t->group);
@@ -378,6 +438,13 @@ static int extras_match(const void *tab, const mimas_table_desc *d, const native
     return MIMAS_OK;
 }
 
+static int same_tube(const mimas_tube *a, const mimas_tube *b)
+{
+    return memcmp(a->origin, b->origin, sizeof a->origin) == 0 &&
+           memcmp(a->direction, b->direction, sizeof a->direction) == 0 &&
+           a->radius == b->radius && a->length == b->length;
+}
+
 static int check_same_layout(mimas_writer *w, const mimas_frame *f, mimas_error *err)
 {
     int rc = MIMAS_OK;
@@ -400,6 +467,13 @@ static int check_same_layout(mimas_writer *w, const mimas_frame *f, mimas_error 
                              "(write with the triclinic option)");
     else if (memcmp(w->periodic, f->box.periodic, sizeof w->periodic) != 0)
         rc = mimas_error_set(err, MIMAS_EDATA, "the periodic boundaries change between frames");
+    else if (f->tube.present != w->tube.present || (w->tube.present && !same_tube(&f->tube, &w->tube)))
+        rc = mimas_error_set(err, MIMAS_EDATA, "the tube changes between frames");
+    else if (f->gas.present != w->has_gas ||
+             (w->has_gas && (memcmp(f->gas.cells, w->gas_cells, sizeof w->gas_cells) != 0 ||
+                             memcmp(f->gas.origin, w->gas_origin, sizeof w->gas_origin) != 0 ||
+                             memcmp(f->gas.spacing, w->gas_spacing, sizeof w->gas_spacing) != 0)))
+        rc = mimas_error_set(err, MIMAS_EDATA, "the gas grid changes between frames");
     if (!rc)
         rc = extras_match(&f->particles, &mimas_particles_desc, w->pcols, w->npcols,
                           "particles", err);
@@ -426,6 +500,12 @@ static int start_layout(mimas_writer *w, const mimas_frame *f, mimas_error *err)
     w->walls.desc = &mimas_walls_desc;
     w->walls.group = NATIVE_WALLS;
     int rc = create_particles(w, f, err);
+    if (!rc && f->tube.present) {
+        w->tube = f->tube;
+        rc = create_tube(w, &f->tube, err);
+    }
+    if (!rc && f->gas.present)
+        rc = create_gas(w, &f->gas, err);
     if (!rc && w->has_contacts)
         rc = create_flat(w, &w->contacts, &f->contacts, err);
     if (!rc && w->has_walls)
@@ -515,6 +595,18 @@ static int stage_particles(mimas_writer *w, const mimas_frame *f, mimas_error *e
     w->staged_step = f->step;
     w->staged_time = f->time;
     w->staged_n = n;
+    for (int g = 0; g < 3 && w->has_gas; g++) {
+        const size_t *c = w->gas_cells;
+        hsize_t gext[5] = {k + 1, c[2], c[1], c[0], 3}, gstart[5] = {k, 0, 0, 0, 0};
+        hsize_t gcount[5] = {1, c[2], c[1], c[0], 3};
+        const void *data = g == 0 ? (const void *)f->gas.pressure
+                           : g == 1 ? (const void *)f->gas.porosity
+                                    : (const void *)f->gas.velocity;
+        int rank = g == 2 ? 5 : 4;
+        if (H5Dset_extent(w->gas_ds[g], gext) < 0 ||
+            write_block(w->gas_ds[g], H5T_NATIVE_DOUBLE, rank, gstart, gcount, data) < 0)
+            return h5fail(w, err, "write the gas fields");
+    }
     return MIMAS_OK;
 }
 
@@ -652,9 +744,9 @@ static herr_t release(mimas_writer *w)
     close_cols(w->pcols, w->npcols);
     close_flat(&w->contacts);
     close_flat(&w->walls);
-    hid_t ids[6] = {w->clock_step, w->clock_time, w->box_edges,
-                    w->box_lower, w->box_upper, w->count};
-    for (int k = 0; k < 6; k++)
+    hid_t ids[9] = {w->clock_step, w->clock_time, w->box_edges, w->box_lower, w->box_upper,
+                    w->count, w->gas_ds[0], w->gas_ds[1], w->gas_ds[2]};
+    for (int k = 0; k < 9; k++)
         if (ids[k] > 0)
             H5Dclose(ids[k]);
     herr_t rc = w->file > 0 ? H5Fclose(w->file) : 0;

@@ -230,4 +230,6 @@ void dem_forces(dem_system *s)
         memcpy(s->f[i], f, sizeof f);
         memcpy(s->t[i], t, sizeof t);
     }
+    if (s->hooks.body_forces)
+        s->hooks.body_forces(s->hooks.ctx, s);
 }

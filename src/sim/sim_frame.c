@@ -1,4 +1,5 @@
-/* The simulation state as a mimas frame (particles, contacts, wall contacts). */
+/* The simulation state as a mimas frame (particles, contacts, wall contacts;
+ * the tube and gas fields of a plugtube run). */
 #include <config.h>
 
 #include <math.h>
@@ -131,5 +132,9 @@ int sim_frame_fill(const dem_system *s, const sim_plan *plan, mimas_frame *f, mi
         rc = fill_contacts(s, &f->contacts, err);
     if (!rc)
         rc = fill_walls(s, &f->walls, err);
+    f->tube.present = 0;
+    f->gas.present = 0;
+    if (!rc && plan->tube)
+        rc = sim_tube_frame(plan->tube, f, err);
     return rc;
 }

@@ -72,14 +72,16 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
     mimas_writer_options_default(&wo);
     wo.provenance = o->provenance;
     wo.xdmf = 1; /* the sidecar for ParaView, written when the run ends */
+    sim_ck_chunk state[16];
     int rc = sim_setup(&s, sc, &plan, err);
+    size_t nstate = rc ? 0 : sim_plan_state(&plan, state, 16);
     if (!rc && o->resume) {
         /* the continued file is written under a temporary name and renamed
          * over RUN.h5 at once, so the writer cannot name it in the sidecar
          * when it closes: the sidecar is written here after the close */
         mimas_writer_options wr = wo;
         wr.xdmf = 0;
-        if (!(rc = sim_checkpoint_read(&s, ckpt, err)))
+        if (!(rc = sim_checkpoint_read(&s, state, nstate, ckpt, err)))
             rc = reopen_output(o, s.step, &w, &wr, err);
     } else if (!rc) {
         remove(ckpt);
@@ -105,7 +107,7 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
         if (!rc && ((sc->checkpoint_every == 0 && frame) ||
                     (sc->checkpoint_every > 0 && s.step % sc->checkpoint_every == 0) || stop ||
                     s.step == plan.total_steps))
-            rc = sim_checkpoint_write(&s, ckpt, err);
+            rc = sim_checkpoint_write(&s, state, nstate, ckpt, err);
         if (!rc && o->progress && (s.step % 100 == 0 || s.step == plan.total_steps)) {
             double t = now();
             if (t - last >= 0.5 || s.step == plan.total_steps) {
@@ -131,6 +133,7 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
         }
     }
     mimas_frame_free(&f);
+    sim_plan_free(&plan, &s);
     dem_free(&s);
     return rc;
 }
