@@ -19,12 +19,11 @@ static const cli_option options[] = {
     {"p-range", 0, "LO:HI", "and whose pressure is within LO:HI (Pa; either may be left out; "
                             "default 0:)"},
     {"shear-rate-windows", 0, "LO:HI,...", "shear-rate windows for the mean viscosity (default: "
-                                           "those of Uhlig (2012), Table 4.6)"},
+                                           "those of Uhlig 2012, Table 4.6)"},
     {"I-windows", 0, "LO:HI,...", "inertial-number windows for the mean viscosity (default: "
-                                  "those of Uhlig (2012), Table 4.7)"},
+                                  "those of Uhlig 2012, Table 4.7)"},
     {"definition", 0, "general|luding", "general: tau, shear_rate (invariants; default); luding: "
-                                        "tau_phi, shear_rate_luding (Uhlig 2012, cylindrical "
-                                        "grids)"},
+                                        "tau_phi, shear_rate_luding (Uhlig 2012; cylindrical grids)"},
     {"plot", 0, "PREFIX", "draw PREFIX.yield.png, PREFIX.mu_I.png and PREFIX.eta.png (gnuplot)"},
     {"output", 'o', "FILE", "write the table to FILE (default: standard output)"},
     CLI_TABLE_OPTIONS,
@@ -123,6 +122,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (!rc && argc - first != 1)
         rc = cli_fail(cmd, 1, "needs one field file (mimas average -o FIELDS.h5), not %d inputs",
                       argc - first);
+    if (!rc)
+        rc = cli_refuse_input_as_output(cmd, a.output, NULL, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.plot, NULL, argv + first, argc - first);
     if (rc)
         return rc < 0 ? 0 : rc;
     mimas_error err;

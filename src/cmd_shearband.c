@@ -215,6 +215,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (!rc && (size_t)a.o.model >= a.o.min_points)
         rc = cli_fail(cmd, 1, "--min-points must exceed the %d parameters of the model",
                       a.o.model);
+    if (!rc)
+        rc = cli_refuse_input_as_output(cmd, a.output, &in, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.plot, &in, argv + first, argc - first);
     mimas_error err;
     mimas_fieldset *fs = NULL;
     int status = MIMAS_OK;
