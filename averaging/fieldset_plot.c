@@ -124,7 +124,9 @@ int mimas_fieldset_plot(const mimas_fieldset *fs, const char *field,
     unit_text(unit_of(field, cyl), unit, sizeof unit);
     snprintf(value, sizeof value, "%s%s%s%s%s", o && o->error ? "standard error of " : "", sym,
              unit[0] ? " (" : "", unit, unit[0] ? ")" : "");
-    mimas_plot_literal(mimas_fieldset_name(fs), file, sizeof file);
+    /* the file's own name: a long path in the title says little and may not fit */
+    const char *name = mimas_fieldset_name(fs), *slash = strrchr(name, '/');
+    mimas_plot_literal(slash && slash[1] ? slash + 1 : name, file, sizeof file);
     snprintf(title, sizeof title, "%s, %zu frames", file, g->frames);
     int a = dirs[0], b = ndirs > 1 ? dirs[1] : -1;
     char ca[64], script[8192];

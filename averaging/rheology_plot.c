@@ -46,18 +46,6 @@ static int write_cells(const mimas_rheology *r, mimas_plot *p, int *errors, mima
     return MIMAS_OK;
 }
 
-/* "0.1699 ± 0.0031": the value to the second significant digit of its error */
-static void pm(double v, double e, char *buf, size_t len)
-{
-    if (!(isfinite(e) && e > 0) || !isfinite(v) || v == 0) {
-        snprintf(buf, len, "%.4g", v);
-        return;
-    }
-    int sig = (int)floor(log10(fabs(v))) - (int)floor(log10(e)) + 2;
-    sig = sig < 2 ? 2 : sig > 10 ? 10 : sig;
-    snprintf(buf, len, "%.*g ± %.2g", sig, v, e);
-}
-
 /* Cells where x (and y) can be drawn (positive on log axes). */
 static size_t drawable(const double *x, const double *y, size_t n, int logx, int logy)
 {
@@ -185,11 +173,11 @@ int mimas_rheology_plot(const mimas_rheology *r, const char *prefix, mimas_error
              common, tau, tau, f->npts);
     curve[0] = '\0';
     if (f->status == MIMAS_FIT_OK) {
-        pm(f->p[0], f->err[0], a, sizeof a);
-        pm(f->p[1], f->err[1], b, sizeof b);
+        mimas_plot_value_error(f->p[0], f->err[0], a, sizeof a);
+        mimas_plot_value_error(f->p[1], f->err[1], b, sizeof b);
         double psi = fabs(f->p[1]) <= 1 ? asin(f->p[1]) * 180 / M_PI : NAN;
         double epsi = f->err[1] / sqrt(1 - f->p[1] * f->p[1]) * 180 / M_PI;
-        pm(psi, epsi, d, sizeof d);
+        mimas_plot_value_error(psi, epsi, d, sizeof d);
         snprintf(curve, sizeof curve, "%.17g + %.17g*x with lines lw 2 lc rgb 'black' "
                  "title 'τ_0 = %s Pa, ζ = %s (ψ = asin ζ = %s°)'", f->p[0], f->p[1], a, b, d);
     }
@@ -205,9 +193,9 @@ int mimas_rheology_plot(const mimas_rheology *r, const char *prefix, mimas_error
              common, tau, f->npts);
     curve[0] = '\0';
     if (f->status == MIMAS_FIT_OK) {
-        pm(f->p[0], f->err[0], a, sizeof a);
-        pm(f->p[1], f->err[1], b, sizeof b);
-        pm(f->p[2], f->err[2], d, sizeof d);
+        mimas_plot_value_error(f->p[0], f->err[0], a, sizeof a);
+        mimas_plot_value_error(f->p[1], f->err[1], b, sizeof b);
+        mimas_plot_value_error(f->p[2], f->err[2], d, sizeof d);
         snprintf(curve, sizeof curve, "%.17g + (%.17g - %.17g)/(1 + %.17g/x) with lines lw 2 "
                  "lc rgb 'black' title 'μ_s = %s, μ_2 = %s, I_0 = %s'", f->p[0], f->p[1],
                  f->p[0], f->p[2], a, b, d);
@@ -226,8 +214,8 @@ int mimas_rheology_plot(const mimas_rheology *r, const char *prefix, mimas_error
                  k ? "" : " (s^{-1})", tau, rate, k ? "I" : rate, f->npts);
         curve[0] = '\0';
         if (f->status == MIMAS_FIT_OK) {
-            pm(f->p[0], f->err[0], a, sizeof a);
-            pm(f->p[1], f->err[1], b, sizeof b);
+            mimas_plot_value_error(f->p[0], f->err[0], a, sizeof a);
+            mimas_plot_value_error(f->p[1], f->err[1], b, sizeof b);
             snprintf(curve, sizeof curve, "%.17g*x**%.17g with lines lw 2 lc rgb 'black' "
                      "title 'k = %s %s, n = %s'", f->p[0], f->p[1], a,
                      k ? "Pa s" : "Pa s^{n+1}", b);

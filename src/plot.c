@@ -6,6 +6,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <spawn.h>
 #include <stdlib.h>
 #include <string.h>
@@ -54,6 +55,38 @@ void mimas_plot_literal(const char *text, char *buf, size_t len)
     }
     if (len)
         buf[k < len ? k : len - 1] = '\0';
+}
+
+void mimas_plot_value_error(double v, double e, char *buf, size_t len)
+{
+    if (!(isfinite(e) && e > 0) || !isfinite(v) || e < 1e-9 * fabs(v)) {
+        snprintf(buf, len, "%.4g", v);
+        return;
+    }
+    /* outside 1e-4 .. 1e6 a common power of ten is factored out */
+    int ex = (int)floor(log10(fmax(fabs(v), e)));
+    int sci = ex < -4 || ex >= 6;
+    double scale = sci ? pow(10, ex) : 1, vs = v / scale, es = e / scale;
+    /* decimals that give the error two significant digits, after rounding
+     * (0.0996 is 0.10, not 0.100) */
+    int d = 1 - (int)floor(log10(es));
+    if (round(es * pow(10, d)) >= 100)
+        d--;
+    char a[48], b[48];
+    if (d >= 0) {
+        snprintf(a, sizeof a, "%.*f", d, vs);
+        snprintf(b, sizeof b, "%.*f", d, es);
+    } else {
+        double q = pow(10, -d);
+        snprintf(a, sizeof a, "%.0f", round(vs / q) * q);
+        snprintf(b, sizeof b, "%.0f", round(es / q) * q);
+    }
+    /* a value that rounds to zero has no sign */
+    const char *va = a[0] == '-' && strspn(a + 1, "0.") == strlen(a + 1) ? a + 1 : a;
+    if (sci)
+        snprintf(buf, len, "(%s ± %s)×10^{%d}", va, b, ex);
+    else
+        snprintf(buf, len, "%s ± %s", va, b);
 }
 
 /* x y z r, phi as φ: the components of a vector or tensor field */

@@ -41,6 +41,13 @@ void mimas_plot_symbol(const char *field, char *buf, size_t len);
 /* text with the characters of enhanced text (_ ^ @ & { } ~) escaped, for
  * single-quoted strings in scripts (a file name in a title). */
 void mimas_plot_literal(const char *text, char *buf, size_t len);
+/* A value with its standard error for a key, in enhanced text: both to the
+ * decimal place of the error's second significant digit ("0.170 ± 0.026",
+ * "410 ± 61", "-7 ± 12"), with a power of ten factored out when the larger
+ * of the two is below 1e-4 or from 1e6 on ("(1.23 ± 0.45)×10^{-7}").  A
+ * value without a usable error (not finite, not positive, or below 1e-9 of
+ * the value) is printed alone to 4 digits. */
+void mimas_plot_value_error(double v, double e, char *buf, size_t len);
 
 #ifdef __cplusplus
 }
