@@ -1,4 +1,4 @@
-/* Micro-macro averaging (PHYSICS 6): frames in, time-averaged fields on a
+/* Micro-macro averaging (docs/theory.md §6): frames in, time-averaged fields on a
  * grid out.  Time averages are taken of the primary sums (mass, momentum,
  * momentum flux, contact stress, fabric, ...) and the fields derived from the
  * averages; the spread over frames comes from per-frame fields. */

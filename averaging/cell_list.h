@@ -1,6 +1,6 @@
 /* Particles binned by their fractional position in a (possibly triclinic)
  * box, for visiting every particle within a distance R of a point, by the
- * minimum image along the periodic axes (PHYSICS 1). */
+ * minimum image along the periodic axes (docs/theory.md §1). */
 #ifndef MIMAS_CELL_LIST_H
 #define MIMAS_CELL_LIST_H
 

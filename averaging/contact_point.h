@@ -1,5 +1,5 @@
 /* Where a contact acts: the contact point and the branch vector from it to a
- * particle centre (PHYSICS 1, 2), shared by the averaging and the per-particle
+ * particle centre (docs/theory.md §1), shared by the averaging and the per-particle
  * Voronoi stress. */
 #ifndef MIMAS_CONTACT_POINT_H
 #define MIMAS_CONTACT_POINT_H

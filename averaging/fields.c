@@ -66,6 +66,18 @@ const char *mimas_field_name(size_t k, int cylindrical)
     return name[0] ? name : NULL;
 }
 
+int mimas_field_find(const char *name, int cylindrical, size_t *k)
+{
+    for (size_t c = 0; c < NFIELDS; c++) {
+        const char *n = mimas_field_name(c, cylindrical);
+        if (n && !strcmp(n, name)) {
+            *k = c;
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* symmetric part of a 3x3 tensor into xx yy zz xy xz yz */
 static void sym6(const double *T, double *out)
 {

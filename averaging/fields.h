@@ -8,6 +8,8 @@
 
 #include <stddef.h>
 
+#include "field_table.h"
+
 /* primary sums per cell, each already divided by volume (a density); a
  * particle adds the block S_N..S_K (and the gradients S_G..) in one sweep, a
  * contact the block S_C..S_F */
@@ -45,18 +47,6 @@ typedef enum mimas_fields_mode {
     MIMAS_FIELDS_VORONOI
 } mimas_fields_mode;
 
-typedef struct mimas_field_desc {
-    const char *name;   /* for Cartesian grids */
-    const char *cname;  /* for cylindrical grids (NULL: same name; "" : not there) */
-    const char *unit;
-    const char *meaning;
-} mimas_field_desc;
-
-/* All derived columns, in output order. */
-size_t mimas_fields_count(void);
-const mimas_field_desc *mimas_field(size_t k);
-/* The column's name on a grid of this kind (NULL if the field does not exist there). */
-const char *mimas_field_name(size_t k, int cylindrical);
 /* Computes every derived column from the sums of one cell; r is the cell
  * centre's radius (cylindrical grids).  Undefined values (velocity of an
  * empty cell, mu where p <= 0, ...) are NaN, as docs/fields.md says.  The
@@ -76,7 +66,5 @@ void mimas_fields_derive(const double *S, int cylindrical, double r, mimas_field
  * diameter if it is > 0, else the cell's mean diameter d. */
 void mimas_fields_strain(const double L[3][3], const double *S, int cylindrical, double r,
                          double diameter, double *out);
-/* Index of the velocity columns (3 consecutive). */
-size_t mimas_fields_velocity(void);
 
 #endif

@@ -103,12 +103,8 @@ int mimas_fieldset_from_average(mimas_fieldset **out, const mimas_average *avg, 
 /* The column of a field in the average's table, or -1. */
 static long column(const mimas_fieldset *fs, const char *field)
 {
-    for (size_t k = 0; k < mimas_fields_count(); k++) {
-        const char *n = mimas_field_name(k, fs->cyl);
-        if (n && !strcmp(n, field))
-            return (long)k;
-    }
-    return -1;
+    size_t k;
+    return mimas_field_find(field, fs->cyl, &k) ? (long)k : -1;
 }
 
 /* ---- from a field file ---- */

@@ -57,6 +57,21 @@ int mimas_fieldset_has(const mimas_fieldset *fs, const char *field);
 int mimas_fieldset_read(const mimas_fieldset *fs, const char *field, double *mean, double *sem,
                         mimas_error *err);
 
+/* The picture of one field (mimas plot): on a grid with two directions of
+ * more than one cell a colour map of the cells (drawn to scale where both
+ * are lengths; undefined cells white) with a colour bar in the field's
+ * unit, on a grid with one such direction the profile with its standard
+ * errors; by gnuplot, into png (written under a temporary name, renamed
+ * when complete).  MIMAS_EMISSING for a field the set does not hold,
+ * MIMAS_EDATA for a grid with no or three such directions. */
+typedef struct mimas_fieldset_plot_options {
+    int error;      /* draw the standard error instead of the mean */
+    int logscale;   /* logarithmic colour scale (map) or value axis (profile) */
+    double lo, hi;  /* the value range; not finite: from the data */
+} mimas_fieldset_plot_options;
+int mimas_fieldset_plot(const mimas_fieldset *fs, const char *field,
+                        const mimas_fieldset_plot_options *o, const char *png, mimas_error *err);
+
 #ifdef __cplusplus
 }
 #endif

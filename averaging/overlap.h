@@ -1,4 +1,4 @@
-/* Geometric kernels of Heaviside-bin averaging (PHYSICS 6): the volume of a
+/* Geometric kernels of Heaviside-bin averaging (docs/theory.md §6): the volume of a
  * sphere inside a rectangular or cylindrical cell, and the fraction of a
  * straight segment (a contact branch vector) inside such a cell.  Exact to
  * rounding (closed forms) or to ~1e-12 (adaptive quadrature of exact

@@ -7,23 +7,23 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* 000 Tables 4.6 and 4.7: small windows of shear rate (1/s) and of I */
-static const mimas_rheology_window rate_windows_000[] = {
+/* Uhlig (2012), Tables 4.6 and 4.7: small windows of shear rate (1/s) and of I */
+static const mimas_rheology_window rate_windows_uhlig[] = {
     {0.02, 0.025}, {0.03, 0.035}, {0.05, 0.055}, {0.07, 0.075}, {0.11, 0.12}};
-static const mimas_rheology_window I_windows_000[] = {
+static const mimas_rheology_window I_windows_uhlig[] = {
     {1e-4, 1.25e-4}, {2e-4, 2.2e-4}, {4e-4, 4.5e-4}, {7e-4, 8e-4}, {1e-3, 1.2e-3}};
 
 void mimas_rheology_options_default(mimas_rheology_options *o)
 {
     memset(o, 0, sizeof *o);
     o->definition = MIMAS_RHEOLOGY_GENERAL;
-    o->min_shear_rate = 0.02; /* 000 Sec. 4.2: the yield line holds above ~0.02 1/s */
+    o->min_shear_rate = 0.02; /* Uhlig (2012), Sec. 4.2: the yield line holds above ~0.02 1/s */
     o->p_lo = 0;
     o->p_hi = INFINITY;
-    o->rate_windows = rate_windows_000;
-    o->nrate_windows = sizeof rate_windows_000 / sizeof rate_windows_000[0];
-    o->I_windows = I_windows_000;
-    o->nI_windows = sizeof I_windows_000 / sizeof I_windows_000[0];
+    o->rate_windows = rate_windows_uhlig;
+    o->nrate_windows = sizeof rate_windows_uhlig / sizeof rate_windows_uhlig[0];
+    o->I_windows = I_windows_uhlig;
+    o->nI_windows = sizeof I_windows_uhlig / sizeof I_windows_uhlig[0];
 }
 
 int mimas_rheology_parse_windows(const char *spec, mimas_rheology_window *w, size_t max,
@@ -168,6 +168,8 @@ static void free_cells(mimas_rheology_cells *c)
     free(c->mu);
     free(c->I);
     free(c->eta);
+    free(c->p_sem);
+    free(c->tau_sem);
     memset(c, 0, sizeof *c);
 }
 
@@ -189,17 +191,19 @@ static int select_cells(const mimas_fieldset *fs, const mimas_rheology_options *
     int rc = MIMAS_OK;
     for (int k = 0; k < 5; k++)
         f[k] = malloc(cells * sizeof *f[k]);
-    double **cols[6] = {&c->p, &c->tau, &c->shear_rate, &c->mu, &c->I, &c->eta};
-    for (int k = 0; k < 6; k++)
+    double *sem[2] = {malloc(cells * sizeof *sem[0]), malloc(cells * sizeof *sem[1])};
+    double **cols[8] = {&c->p,   &c->tau, &c->shear_rate, &c->mu,
+                        &c->I,   &c->eta, &c->p_sem,      &c->tau_sem};
+    for (int k = 0; k < 8; k++)
         *cols[k] = malloc((cells ? cells : 1) * sizeof **cols[k]);
     for (int k = 0; k < 5; k++)
-        if (!f[k])
+        if (!f[k] || (k < 2 && !sem[k]))
             rc = mimas_error_set(err, MIMAS_EIO, "out of memory for the rheology");
-    for (int k = 0; k < 6; k++)
+    for (int k = 0; k < 8; k++)
         if (!*cols[k])
             rc = mimas_error_set(err, MIMAS_EIO, "out of memory for the rheology");
     for (int k = 0; !rc && k < 5; k++)
-        rc = mimas_fieldset_read(fs, need[k], f[k], NULL, err);
+        rc = mimas_fieldset_read(fs, need[k], f[k], k < 2 ? sem[k] : NULL, err);
     c->n = 0;
     for (size_t i = 0; !rc && i < cells; i++) {
         double p = f[0][i], tau = f[1][i], sr = f[2][i], I = f[3][i], sg = f[4][i];
@@ -209,6 +213,8 @@ static int select_cells(const mimas_fieldset *fs, const mimas_rheology_options *
         size_t k = c->n++;
         c->p[k] = p;
         c->tau[k] = tau;
+        c->p_sem[k] = sem[0][i];
+        c->tau_sem[k] = sem[1][i];
         c->shear_rate[k] = sr;
         /* mu = tau/p, eta = tau/shear rate as in docs/fields.md; I scales
          * with the shear rate (I = shear rate d sqrt(rho_p/p)) */
@@ -218,6 +224,8 @@ static int select_cells(const mimas_fieldset *fs, const mimas_rheology_options *
     }
     for (int k = 0; k < 5; k++)
         free(f[k]);
+    free(sem[0]);
+    free(sem[1]);
     if (rc)
         free_cells(c);
     return rc;
@@ -312,7 +320,7 @@ int mimas_rheology_analyse(const mimas_fieldset *fs, const mimas_rheology_option
     static const char *const line[] = {"tau0", "zeta"}, *const jop[] = {"mu_s", "mu_2", "I0"},
                              *const power[] = {"k", "n"};
     push_fit(r, "yield", &r->yield, line, c->p, c->tau, ANY);
-    /* the friction angle psi = asin(zeta) (000 Table 4.5), in degrees */
+    /* the friction angle psi = asin(zeta) (Uhlig 2012, Table 4.5), in degrees */
     const mimas_fit *y = &r->yield;
     double zeta = y->p[1], deg = 180.0 / M_PI;
     int defined = y->status == MIMAS_FIT_OK && fabs(zeta) <= 1;

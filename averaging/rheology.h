@@ -1,9 +1,9 @@
-/* Rheology of sheared granular matter from averaged fields (PHYSICS 7,
- * 000 Sec. 4.2): the yield line tau = tau0 + zeta p with the friction angle
+/* Rheology of sheared granular matter from averaged fields (docs/theory.md §7.2;
+ * Uhlig 2012, Sec. 4.2): the yield line tau = tau0 + zeta p with the friction angle
  * psi = asin(zeta), the mu(I) law of Jop et al. (2006)
  * mu = mu_s + (mu_2 - mu_s)/(1 + I0/I), power laws of the viscosity
  * eta = k gammadot^n and eta = k I^n, and the mean viscosity in windows of
- * shear rate or inertial number (000 Tables 4.6, 4.7).  The result is one
+ * shear rate or inertial number (Uhlig 2012, Tables 4.6, 4.7).  The result is one
  * long table, a row per parameter or window (docs/rheology.md). */
 #ifndef MIMAS_RHEOLOGY_H
 #define MIMAS_RHEOLOGY_H
@@ -19,7 +19,7 @@ extern "C" {
 #endif
 
 /* Which shear stress and shear rate: the invariants (tau = sqrt(s:s/2),
- * shear_rate = sqrt(2 D':D'), eta, mu, I as averaged), or 000's ring-shear
+ * shear_rate = sqrt(2 D':D'), eta, mu, I as averaged), or Uhlig's ring-shear
  * forms (tau_phi, shear_rate_luding, and eta, mu, I from them). */
 typedef enum mimas_rheology_definition {
     MIMAS_RHEOLOGY_GENERAL,
@@ -42,13 +42,14 @@ typedef struct mimas_rheology_options {
     size_t nrate_windows, nI_windows;
 } mimas_rheology_options;
 
-/* The defaults: general, 0.02 1/s, 0 <= p, the windows of 000 Tables 4.6/4.7. */
+/* The defaults: general, 0.02 1/s, 0 <= p, the windows of Uhlig (2012), Tables 4.6/4.7. */
 void mimas_rheology_options_default(mimas_rheology_options *o);
 
 /* The cells an analysis uses, per the definition. */
 typedef struct mimas_rheology_cells {
     size_t n;
     double *p, *tau, *shear_rate, *mu, *I, *eta;
+    double *p_sem, *tau_sem;   /* standard errors over frames (NaN: none in the file) */
 } mimas_rheology_cells;
 
 /* ---- the single analyses (unweighted; errors scaled by the scatter) ---- */

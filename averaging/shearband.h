@@ -1,4 +1,4 @@
-/* The shear band of a split-bottom ring shear cell (PHYSICS 7, 000 eq. 2.11,
+/* The shear band of a split-bottom ring shear cell (docs/theory.md §7.1; Uhlig 2012, eq. 2.11;
  * Fenistein & van Hecke 2003): per height layer, the angular velocity
  * profile omega(r)/Omega fitted by an error function,
  *   model 2:  0.5 + 0.5 erf((r - Rc)/W)
@@ -79,9 +79,17 @@ double mimas_band_fenistein_rc(double rs, double h);
 int mimas_band_choose_grid(const mimas_frame *f, mimas_grid *g, char *spec, size_t len,
                            mimas_error *err);
 
-/* Draws omega/Omega against r for every layer with its fitted curve, and
- * Rc(z) with error bars, into png (gnuplot). */
-int mimas_band_plot(const mimas_band *b, const char *png, mimas_error *err);
+/* What the picture adds to the fits. */
+typedef struct mimas_band_plot_options {
+    double rs, h;   /* > 0: Fenistein and van Hecke's surface-layer prediction
+                     * Rc(H) for split radius rs and fill height h, and the split */
+} mimas_band_plot_options;
+/* Draws omega/Omega against r for every layer (cells with their error bars,
+ * coloured by height) with its fitted curve, and Rc(z) with its error bars,
+ * the band edges Rc -+ W and (o->rs > 0) the prediction, into png (gnuplot;
+ * o may be NULL). */
+int mimas_band_plot(const mimas_band *b, const mimas_band_plot_options *o, const char *png,
+                    mimas_error *err);
 
 #ifdef __cplusplus
 }

@@ -46,7 +46,8 @@ static int write_data(const mimas_band *b, mimas_plot *p, size_t *npoints, size_
     return MIMAS_OK;
 }
 
-int mimas_band_plot(const mimas_band *b, const char *png, mimas_error *err)
+int mimas_band_plot(const mimas_band *b, const mimas_band_plot_options *o, const char *png,
+                    mimas_error *err)
 {
     mimas_plot *p;
     int rc = mimas_plot_open(&p, png, err);
@@ -58,13 +59,22 @@ int mimas_band_plot(const mimas_band *b, const char *png, mimas_error *err)
         mimas_plot_abort(p);
         return rc;
     }
-    char script[4096];
+    char vel[64], script[8192];
+    mimas_plot_symbol(b->velocity, vel, sizeof vel);
+    /* left: the profiles, coloured by height; offsets keep the points off the
+     * frame, the margins make room for the tick labels and the colour bar */
     int n = snprintf(script, sizeof script,
                      "set multiplot layout 1,2\n"
+                     "set lmargin 10\nset rmargin 14\n"
                      "set palette rgbformulae 33,13,10\nset cblabel 'z (m)'\n"
-                     "set xlabel 'r (m)'\nset ylabel 'omega/Omega (from %s)'\n"
-                     "set key top left\nset title 'angular velocity profiles (model %d%s)'\n",
-                     b->velocity, b->model, b->weighted ? ", weighted" : "");
+                     "set xlabel 'r (m)'\nset ylabel 'ω/Ω%s%s%s'\n"
+                     "set offsets graph 0.02, graph 0.02, graph 0.04, graph 0.04\nset autoscale fix\n"
+                     "set key below horizontal\nset grid\n"
+                     "set title 'angular velocity profiles (model %d%s)'\n",
+                     strcmp(b->velocity, "omega") ? " (from " : "",
+                     strcmp(b->velocity, "omega") ? vel : "",
+                     strcmp(b->velocity, "omega") ? "/r)" : "", b->model,
+                     b->weighted ? ", weighted by the standard errors" : ", unweighted");
     if (!npoints)
         n += snprintf(script + n, sizeof script - (size_t)n,
                       "set label 'no valid cells' at graph 0.4, graph 0.5\n"
@@ -73,21 +83,36 @@ int mimas_band_plot(const mimas_band *b, const char *png, mimas_error *err)
         n += snprintf(script + n, sizeof script - (size_t)n,
                       "plot datadir.'/points' using 1:2:3:4 with yerrorbars pt 7 ps 0.5 "
                       "lc palette z title 'cells'%s\n",
-                      nfits ? ", datadir.'/curves' using 1:2:3 with lines lc palette z "
+                      nfits ? ", datadir.'/curves' using 1:2:3 with lines lw 1.5 lc palette z "
                               "title 'fits'" : "");
+    /* right: the band centre with its errors, the edges, and the prediction */
+    char extra[1024] = "";
+    if (o && o->rs > 0 && o->h > 0) {
+        double pred = mimas_band_fenistein_rc(o->rs, o->h);
+        snprintf(extra, sizeof extra,
+                 ", '+' using (%.9g):(%.9g) every ::0::0 with points pt 3 ps 2.5 lw 2 lc rgb '#d03020' "
+                 "title 'Fenistein \\& van Hecke: R_c(H) = %.4g m', "
+                 "'+' using (%.9g):(0) every ::0::0 with points pt 9 ps 2 lc rgb '#d03020' "
+                 "title 'split R_s = %.4g m'",
+                 pred, o->h, pred, o->rs, o->rs);
+    }
     n += snprintf(script + n, sizeof script - (size_t)n,
-                  "unset label\nset title 'band centre Rc and edges Rc -+ W'\n"
-                  "set lmargin 14\nset xlabel 'r (m)'\nset ylabel 'z (m)'\nunset colorbox\n");
+                  "unset label\nunset colorbox\nset rmargin 4\n"
+                  "set title 'band centre R_c and edges R_c ± W'\n"
+                  "set xlabel 'r (m)'\nset ylabel 'z (m)'\n"
+                  "set offsets graph 0.05, graph 0.05, graph 0.04, graph 0.04\nset autoscale fix\n"
+                  "set key below horizontal maxcols 2\n");
     if (!nfits)
         snprintf(script + n, sizeof script - (size_t)n,
                  "set label 'no layer could be fitted' at graph 0.3, graph 0.5\n"
-                 "plot [0:1][0:1] NaN notitle\nunset multiplot\n");
+                 "plot [0:1][0:1] NaN notitle%s\nunset multiplot\n", extra);
     else
         snprintf(script + n, sizeof script - (size_t)n,
                  "plot datadir.'/rc' using 2:1:3 with xerrorbars pt 7 lc rgb 'black' "
-                 "title 'Rc', '' using ($2-$4):1 with lines dt 2 lc rgb 'black' title 'Rc -+ W', "
-                 "'' using ($2+$4):1 with lines dt 2 lc rgb 'black' notitle\nunset multiplot\n");
-    rc = mimas_plot_render(p, 1400, 600, script, err);
+                 "title 'R_c', '' using ($2-$4):1 with lines dt 2 lc rgb 'black' title "
+                 "'R_c ± W', '' using ($2+$4):1 with lines dt 2 lc rgb 'black' notitle%s\n"
+                 "unset multiplot\n", extra);
+    rc = mimas_plot_render(p, 1500, 760, script, err);
     if (rc) {
         mimas_plot_abort(p);
         return rc;

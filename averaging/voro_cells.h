@@ -13,7 +13,7 @@
 extern "C" {
 #endif
 
-/* A container wall that bounds the cells (PHYSICS 6: cells at free surfaces
+/* A container wall that bounds the cells (docs/theory.md §6: cells at free surfaces
  * and walls must be bounded).  voro++ cuts the cell of a particle at x by one
  * plane per wall: the wall plane itself, or for a cylinder the plane tangent
  * to it at x's angle about the axis (voro++'s own cylinder approximation). */
@@ -47,7 +47,7 @@ enum {
 };
 
 /* Computes the Voronoi cell of every particle in the box: plain Voronoi, or
- * radical when o->radius is given (PHYSICS 6).  An orthogonal box may be
+ * radical when o->radius is given (docs/theory.md §6).  An orthogonal box may be
  * periodic along any axes and have walls; a triclinic box must be periodic
  * along all three and cannot have walls.  Writes the cell volume, face
  * count and surface flags of particle k to volume[k], faces[k] and

@@ -93,7 +93,7 @@ static int reserve(mimas_voronoi *v, size_t n, mimas_error *err)
     return MIMAS_OK;
 }
 
-/* ---- the mean velocity V: Shepard's ratio of Gaussian sums (002 eq. 2.27) ---- */
+/* ---- the mean velocity V: Shepard's ratio of Gaussian sums (Bierwisch 2009, eq. 2.27) ---- */
 
 typedef struct shepard_ctx {
     const mimas_weight *wt;
@@ -135,7 +135,7 @@ static int mean_velocity(mimas_voronoi *v, const mimas_frame *f, mimas_error *er
     return MIMAS_OK;
 }
 
-/* ---- the stress sums V_cell sigma_k (PHYSICS 1, 6) ---- */
+/* ---- the stress sums V_cell sigma_k (docs/theory.md §1, §6) ---- */
 
 /* sum[k] += f (x) b, force first */
 static void add_outer(double sum[9], const double f[3], const double b[3], double sign)

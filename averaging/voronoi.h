@@ -1,4 +1,4 @@
-/* Per-particle Voronoi quantities of a frame (PHYSICS 6, 002 Sec. 2.2 and
+/* Per-particle Voronoi quantities of a frame (docs/theory.md §6; Bierwisch 2009, Sec. 2.2 and
  * eq. 3.8): cell volume, local solid fraction, faces, surface flags and the
  * per-particle stress, stored in the frame as extra particle columns so that
  * the native writer keeps them and mimas average --weight voronoi reads them. */

@@ -1,4 +1,4 @@
-/* Benchmark of the DEM core on the split-bottom ring shear cell (PHYSICS 7
+/* Benchmark of the DEM core on the split-bottom ring shear cell (docs/theory.md §7.1
  * contact law: linear, k_n = 110, k_t = 12, gamma_n = 2e-3, gamma_t = 0.5e-3,
  * mu = 0.01, d = 2 mm monodisperse, smooth walls, dt = 5e-6 s, skin 0.2 mm).
  * The cell is filled, settles (dt = 1e-5 s for --settle seconds), the

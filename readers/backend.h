@@ -29,6 +29,8 @@ typedef struct reader_backend {
      * or neither) */
     int (*peek)(void *state, int64_t *step, double *time, mimas_error *err);
     int (*skip)(void *state, mimas_error *err);
+    /* frames the inputs hold, when the format says (0: unknown); may be NULL */
+    size_t (*total)(void *state);
 } reader_backend;
 
 /* Expands '*' patterns in a list of file names (sorted matches); names

@@ -295,7 +295,7 @@ static int build_layout(dump_series *s, local_layout *l, mimas_error *err)
     if (ncp != 0 && ncp != 3)
         return text_error(&s->in, err, "the contact columns name an incomplete contact point");
     /* without a contact point, pair contacts get c = r_i - (R_i - delta/2) n
-     * (PHYSICS 2); wall contacts cannot (the wall's geometry is unknown) */
+     * (docs/theory.md §1); wall contacts cannot (the wall's geometry is unknown) */
     l->derive_point = ncp == 0 && !l->walls;
     if (ncp == 3 || l->derive_point)
         l->bits |= l->walls ? MIMAS_W_POINT : MIMAS_C_POINT;
@@ -312,7 +312,7 @@ int local_skip(dump_series *s, mimas_error *err)
 }
 
 /* c = r_i - (R_i - delta/2) n with n the unit vector from j to i (minimum
- * image), the contact point of PHYSICS 2; also the overlap from a distance
+ * image), the contact point of docs/theory.md §1; also the overlap from a distance
  * column when the dump has no delta. */
 static int derive(local_layout *l, mimas_frame *f, const double *dist, dump_series *s,
                   mimas_error *err)

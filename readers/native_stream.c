@@ -12,6 +12,7 @@ typedef struct native_stream {
     size_t ninputs, file;
     size_t frame;
     mimas_native *cur;
+    size_t total;   /* frames of all inputs, counted at open */
 } native_stream;
 
 static int probe(const char *path, const char *head, size_t n)
@@ -41,6 +42,7 @@ static int open_stream(void **state, const char *const *inputs, size_t ninputs,
             free(s);
             return rc;
         }
+        s->total += mimas_native_frames(r);
         if (k == 0)
             s->cur = r;
         else
@@ -104,6 +106,11 @@ static void close_stream(void *state)
     free(s);
 }
 
+static size_t total(void *state)
+{
+    return ((native_stream *)state)->total;
+}
+
 static const char *source(void *state)
 {
     const native_stream *s = state;
@@ -111,4 +118,5 @@ static const char *source(void *state)
 }
 
 const reader_backend reader_native = {"native", "mimas native (HDF5, H5MD 1.1)", probe,
-                                      open_stream, next, NULL, close_stream, source, peek, skip};
+                                      open_stream, next, NULL, close_stream, source, peek, skip,
+                                      total};

@@ -356,3 +356,8 @@ size_t mimas_reader_skipped(const mimas_reader *r)
 {
     return r->be->skipped ? r->be->skipped(r->state) : 0;
 }
+
+size_t mimas_reader_total(const mimas_reader *r)
+{
+    return r->be->total ? r->be->total(r->state) : 0;
+}

@@ -1,4 +1,4 @@
-/* One reader interface for every input format (DESIGN.md "Command line"):
+/* One reader interface for every input format (docs/readers.md, docs/api.md):
  * open a list of inputs, take frames one at a time, close.  The format is
  * detected from the content unless options say otherwise. */
 #ifndef MIMAS_READER_H
@@ -57,6 +57,9 @@ const char *mimas_reader_format(const mimas_reader *r);
 /* Frames dropped so far because their contact data were missing
  * (only with allow_missing_contacts). */
 size_t mimas_reader_skipped(const mimas_reader *r);
+/* The number of frames the inputs hold, when the format records it (native
+ * files: counted at open), else 0 (dumps are not read ahead). */
+size_t mimas_reader_total(const mimas_reader *r);
 void mimas_reader_close(mimas_reader *r);
 
 #ifdef __cplusplus

@@ -5,6 +5,7 @@
 
 #include "parallel.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <getopt.h>
 #include <glob.h>
@@ -146,6 +147,14 @@ void cli_print_help(const cli_command *cmd, FILE *out)
             snprintf(left + w, sizeof left - (size_t)w, " %s", o->arg);
         fprintf(out, "  %-28s %s\n", left, o->help);
     }
+    if (cmd->examples && cmd->examples[0]) {
+        fprintf(out, "\nExamples:\n");
+        for (const char *l = cmd->examples; *l;) {
+            size_t len = strcspn(l, "\n");
+            fprintf(out, len ? "  %.*s\n" : "%.*s\n", (int)len, l);
+            l += len + (l[len] == '\n');
+        }
+    }
 }
 
 /* roff needs backslashes doubled and leading dots or quotes escaped */
@@ -163,6 +172,43 @@ static void roff_text(FILE *out, const char *s)
             fputc(*s, out);
         bol = *s == '\n';
     }
+}
+
+/* EXAMPLES: the "# " lines as text, the commands as indented literal lines */
+static void man_examples(FILE *out, const char *text)
+{
+    fprintf(out, ".SH EXAMPLES\n");
+    int literal = 0, para = 1;
+    for (const char *l = text; *l;) {
+        size_t len = strcspn(l, "\n");
+        char line[1024];
+        snprintf(line, sizeof line, "%.*s", (int)(len < sizeof line ? len : sizeof line - 1), l);
+        int comment = line[0] == '#';
+        if (!len || comment) {
+            if (literal)
+                fprintf(out, ".fi\n.RE\n"), literal = 0;
+            if (!len)
+                para = 1;
+            else {
+                char *words = line + (line[1] == ' ' ? 2 : 1);
+                if (para) {
+                    fprintf(out, ".PP\n"), para = 0;
+                    words[0] = (char)toupper((unsigned char)words[0]);
+                }
+                roff_text(out, words);
+                fputc('\n', out);
+            }
+        } else {
+            if (!literal)
+                fprintf(out, ".RS 4\n.nf\n"), literal = 1;
+            roff_text(out, line);
+            fputc('\n', out);
+            para = 1;
+        }
+        l += len + (l[len] == '\n');
+    }
+    if (literal)
+        fprintf(out, ".fi\n.RE\n");
 }
 
 void cli_print_man(const cli_command *cmd, const char *version, FILE *out)
@@ -194,6 +240,8 @@ void cli_print_man(const cli_command *cmd, const char *version, FILE *out)
         roff_text(out, o->help);
         fprintf(out, "\n");
     }
+    if (cmd->examples && cmd->examples[0])
+        man_examples(out, cmd->examples);
     fprintf(out, ".SH EXIT STATUS\n0 on success, 1 on bad usage, 2 on bad input data, with a "
                  "one\\-line message naming the file and the problem.\n"
                  ".SH SEE ALSO\n.BR mimas (1)\n");
@@ -291,15 +339,29 @@ int cli_parse_double(const char *s, double *v)
     return 0;
 }
 
+int cli_parse_range(const char *arg, double *lo, double *hi)
+{
+    const char *colon = strchr(arg, ':');
+    if (!colon)
+        return -1;
+    char a[64], b[64];
+    size_t la = (size_t)(colon - arg), lb = strlen(colon + 1);
+    if (la >= sizeof a || lb >= sizeof b)
+        return -1;
+    memcpy(a, arg, la);
+    a[la] = '\0';
+    memcpy(b, colon + 1, lb + 1);
+    *lo = -INFINITY;
+    *hi = INFINITY;
+    if ((la && cli_parse_double(a, lo)) || (lb && cli_parse_double(b, hi)))
+        return -1;
+    return *hi > *lo ? 0 : -1;
+}
+
 int cli_parse_pair(const char *s, double *a, double *b)
 {
-    const char *colon = strchr(s, ':');
-    if (!colon || colon == s || strlen(colon + 1) == 0 || strlen(s) >= 256)
-        return -1;
-    char first[256];
-    snprintf(first, sizeof first, "%.*s", (int)(colon - s), s);
     double x, y;
-    if (cli_parse_double(first, &x) || cli_parse_double(colon + 1, &y) || !(x < y))
+    if (cli_parse_range(s, &x, &y) || !isfinite(x) || !isfinite(y))
         return -1;
     *a = x;
     *b = y;
@@ -398,22 +460,67 @@ static double seconds(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-void cli_progress_start(cli_progress *p, const cli_inputs *in)
+void cli_progress_begin(cli_progress *p, int quiet)
 {
-    p->on = !in->quiet && isatty(STDERR_FILENO) && mimas_par_rank() == 0;
-    p->last = seconds();
+    memset(p, 0, sizeof *p);
+    p->on = !quiet && isatty(STDERR_FILENO) && mimas_par_rank() == 0;
+    p->start = p->last = seconds();
 }
 
-/* Whether a progress line is due (on, and half a second since the last). */
+void cli_progress_start(cli_progress *p, const cli_inputs *in)
+{
+    cli_progress_begin(p, in->quiet);
+}
+
+void cli_progress_total(cli_progress *p, const mimas_reader *r)
+{
+    p->total = mimas_reader_total(r);
+}
+
+/* 1 if a line is due now: the first update, then every half second */
 static int progress_due(cli_progress *p)
 {
     if (!p->on)
         return 0;
     double now = seconds();
-    if (now - p->last < 0.5)
+    if (p->shown && now - p->last < 0.5)
         return 0;
+    p->shown = 1;
     p->last = now;
     return 1;
+}
+
+/* "45 s", "3 min 05 s", "2 h 05 min" */
+static void duration_text(double s, char *buf, size_t len)
+{
+    if (!(s >= 0) || s > 3.6e8)
+        snprintf(buf, len, "?");
+    else if (s < 59.5)
+        snprintf(buf, len, "%.0f s", s < 1 ? 1 : s);
+    else if (s < 3599.5)
+        snprintf(buf, len, "%d min %02d s", (int)(s + 0.5) / 60, (int)(s + 0.5) % 60);
+    else
+        snprintf(buf, len, "%d h %02d min", (int)(s + 30) / 3600, (int)(s + 30) % 3600 / 60);
+}
+
+static void progress_line(cli_progress *p, const cli_command *cmd, const char *what,
+                          double done, double total, double left, const char *detail)
+{
+    char text[32];
+    if (left < 0)
+        left = done > 0 ? (seconds() - p->start) * (total - done) / done : -1;
+    duration_text(left, text, sizeof text);
+    fprintf(stderr, "\r\033[Kmimas %s: %s %.0f/%.0f (%.0f %%), %s%s%s left", cmd->name, what,
+            done, total, total > 0 ? 100 * done / total : 0, detail ? detail : "",
+            detail ? ", " : "", text);
+    fflush(stderr);
+}
+
+void cli_progress_work(cli_progress *p, const cli_command *cmd, const char *what, double done,
+                       double total, double left, const char *detail)
+{
+    if (progress_due(p))
+        progress_line(p, cmd, what, done, total, left, detail);
 }
 
 void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, long long step,
@@ -421,23 +528,28 @@ void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, 
 {
     if (!progress_due(p))
         return;
-    fprintf(stderr, "\rmimas %s: %zu frames (step %lld, time %g)   ", cmd->name, frames, step,
-            time);
+    char detail[96];
+    if (isnan(time))
+        snprintf(detail, sizeof detail, "step %lld", step);
+    else
+        snprintf(detail, sizeof detail, "step %lld, time %g s", step, time);
+    if (p->total >= frames && p->total > 0) {
+        progress_line(p, cmd, "frame", (double)frames, (double)p->total, -1, detail);
+        return;
+    }
+    fprintf(stderr, "\r\033[Kmimas %s: %zu frames (%s)", cmd->name, frames, detail);
     fflush(stderr);
 }
 
 void cli_progress_count(cli_progress *p, const cli_command *cmd, const char *what, size_t done,
                         size_t total)
 {
-    if (!progress_due(p))
-        return;
-    fprintf(stderr, "\rmimas %s: %s %zu of %zu   ", cmd->name, what, done, total);
-    fflush(stderr);
+    cli_progress_work(p, cmd, what, (double)done, (double)total, -1, NULL);
 }
 
 void cli_progress_done(cli_progress *p)
 {
-    if (p->on)
+    if (p->on && p->shown)
         fputs("\r\033[K", stderr);
 }
 

@@ -33,6 +33,10 @@ typedef struct cli_command {
     size_t noptions;
     int reads_inputs;         /* also takes the input options (cli_inputs) */
     int (*run)(const struct cli_command *cmd, int argc, char **argv);
+    /* Shell lines for the EXAMPLES of --help and the man page (NULL: none):
+     * "# " lines explain, the others are commands; a blank line separates
+     * examples.  tests/cli/examples.test runs them. */
+    const char *examples;
 } cli_command;
 
 /* Called for every option found: opt is an index into cmd->options, arg its
@@ -57,16 +61,30 @@ void cli_print_man(const cli_command *cmd, const char *version, FILE *out);
 int cli_fail(const cli_command *cmd, int status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 /* A progress line on standard error, only when it is a terminal and not
- * quiet, at most twice a second: "mimas CMD: N frames (step S, time T)".
- * cli_progress_done ends the line. */
+ * quiet: at the first update, then at most twice a second.  With a known
+ * total it says how far and how long is left, "mimas CMD: frame 120/500
+ * (24 %), step S, time T s, 1 min 20 s left"; else "mimas CMD: 120 frames
+ * (step S, time T s)".  cli_progress_done erases the line. */
 typedef struct cli_progress {
-    int on;
-    double last;
+    int on, shown;
+    double start, last;
+    size_t total;   /* frames the input holds (0: unknown) */
 } cli_progress;
+/* For commands that read inputs (quiet from -q). */
 void cli_progress_start(cli_progress *p, const cli_inputs *in);
+/* For the others. */
+void cli_progress_begin(cli_progress *p, int quiet);
+/* The total from the reader, when its format knows it (native files). */
+void cli_progress_total(cli_progress *p, const mimas_reader *r);
+/* After each frame read (frames: read so far, used or not). */
 void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, long long step,
                         double time);
-/* The same line for a count of things: "mimas CMD: WHAT DONE of TOTAL". */
+/* Any work of known size: "mimas CMD: WHAT done/total (P %), DETAIL, T left";
+ * left: the seconds left if the caller knows them better (< 0: from the
+ * time since cli_progress_begin and done/total); detail may be NULL. */
+void cli_progress_work(cli_progress *p, const cli_command *cmd, const char *what, double done,
+                       double total, double left, const char *detail);
+/* The same for a count of things: "mimas CMD: WHAT DONE/TOTAL (P %), T left". */
 void cli_progress_count(cli_progress *p, const cli_command *cmd, const char *what, size_t done,
                         size_t total);
 void cli_progress_done(cli_progress *p);
@@ -142,6 +160,8 @@ int cli_parse_pair(const char *s, double *a, double *b);
 int cli_positive_option(const cli_command *cmd, const char *opt, const char *arg, double *v);
 int cli_pair_option(const cli_command *cmd, const char *opt, const char *placeholder,
                     const char *arg, double *a, double *b);
+/* "LO:HI", "LO:" or ":HI" (bounds left out are -inf, +inf; LO < HI); 0 on success. */
+int cli_parse_range(const char *arg, double *lo, double *hi);
 /* --threads N (1..1024) into *threads; prints the usage error and returns 1 otherwise. */
 int cli_parse_threads(const cli_command *cmd, const char *arg, int *threads);
 

@@ -15,6 +15,7 @@ void cli_frames_init(cli_frames *s, mimas_reader *r, cli_window *window, const c
     s->size = mimas_par_size();
     s->selected = 0;
     s->position = 0;
+    s->consumed = 0;
 }
 
 int cli_frames_next(cli_frames *s, mimas_frame *f, mimas_error *err)
@@ -26,6 +27,7 @@ int cli_frames_next(cli_frames *s, mimas_frame *f, mimas_error *err)
             int rc = mimas_reader_next(s->r, f, err);
             if (rc)
                 return rc;
+            s->consumed++;
             int take = cli_window_take(s->window, f, s->input, err);
             if (take < 0)
                 return MIMAS_EUSAGE;
@@ -44,6 +46,7 @@ int cli_frames_next(cli_frames *s, mimas_frame *f, mimas_error *err)
         int take = cli_window_take(s->window, &head, s->input, err);
         if (take < 0)
             return MIMAS_EUSAGE;
+        s->consumed++;
         if (take && s->selected++ % (size_t)s->size == (size_t)s->rank)
             return mimas_reader_next(s->r, f, err);
         rc = mimas_reader_skip(s->r, err);

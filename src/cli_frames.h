@@ -18,6 +18,7 @@ typedef struct cli_frames {
     int rank, size;
     size_t selected;     /* frames of the window so far, over all ranks */
     size_t position;     /* the window index of the frame returned last (or failing) */
+    size_t consumed;     /* the inputs' frames read or passed over so far (progress) */
 } cli_frames;
 
 void cli_frames_init(cli_frames *s, mimas_reader *r, cli_window *window, const char *input);

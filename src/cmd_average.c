@@ -361,11 +361,12 @@ static int run(const cli_command *cmd, int argc, char **argv)
     mimas_bytes packed = {0};
     cli_progress prog;
     cli_progress_start(&prog, &in);
+    cli_progress_total(&prog, r);
     cli_frames frames;
     cli_frames_init(&frames, r, &a.window, argv[first]);
     while (!status && (status = cli_frames_next(&frames, &f, &err)) == MIMAS_OK) {
         status = mimas_average_add(avg, &f, &err);
-        cli_progress_frame(&prog, cmd, frames.position + 1, (long long)f.step, f.time);
+        cli_progress_frame(&prog, cmd, frames.consumed, (long long)f.step, f.time);
         if (!status && one) {
             mimas_average_reset(one);
             status = mimas_average_add(one, &f, &err);
@@ -449,4 +450,18 @@ const cli_command cmd_average = {
     sizeof options / sizeof options[0],
     1,
     run,
+    "# the fields of a ring shear cell on an r-z grid, averaged over t >= 5 s with\n"
+    "# standard errors, the glued wall particles (type 2) left out: the field file for\n"
+    "# mimas shearband and mimas rheology, and the same as a table\n"
+    "mimas average run.h5 --grid r=0.0147:0.11:39,z=0:0.038:20 --weight bins \\\n"
+    "    --from 5 --exclude-types 2 --errors -o fields.h5 --tsv fields.tsv\n"
+    "\n"
+    "# a vertical profile of three fields by a Gaussian of width 1 mm, to standard output\n"
+    "mimas average run.h5 --grid z=0:0.038:38 --weight gauss:w=0.001 --fields nu,v_z,p\n"
+    "\n"
+    "# the whole box as one cell\n"
+    "mimas average run.h5 --grid none --weight bins --fields nu,stress,p\n"
+    "\n"
+    "# every field with its unit and definition\n"
+    "mimas average --list-fields",
 };

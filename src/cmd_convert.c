@@ -99,6 +99,7 @@ static int convert_frames(const cli_command *cmd, const cli_inputs *in, mimas_re
     int rc;
     cli_progress prog;
     cli_progress_start(&prog, in);
+    cli_progress_total(&prog, r);
     while ((rc = mimas_reader_next(r, &f, err)) == MIMAS_OK) {
         rc = out->append(out->w, &f, err);
         if (rc)
@@ -205,4 +206,8 @@ const cli_command cmd_convert = {
     sizeof options / sizeof options[0],
     1,
     run,
+    "# a LIGGGHTS run with its contact dumps into one native file (docs/format.md)\n"
+    "K=pos,vel,id,force,force_normal,force_tangential,torque,torque_normal,torque_tangential,history,contactArea,delta,contactPoint\n"
+    "mimas convert 'dump.*.atom.gz' --contacts 'dump.*.pgl.gz' --contact-columns $K -o run.h5\n"
+    "mimas info run.h5",
 };

@@ -303,8 +303,11 @@ static int stream(disperse_args *a, cli_inputs *in, mimas_reader *r, const char 
     mimas_frame_init(&f);
     cli_progress prog;
     cli_progress_start(&prog, in);
+    cli_progress_total(&prog, r);
+    size_t nread = 0;
     int status;
     while ((status = mimas_reader_next(r, &f, err)) == MIMAS_OK) {
+        cli_progress_frame(&prog, a->cmd, ++nread, (long long)f.step, f.time);
         int take = cli_window_take(&a->window, &f, input, err);
         if (take < 0) {
             status = MIMAS_EUSAGE;
@@ -318,7 +321,6 @@ static int stream(disperse_args *a, cli_inputs *in, mimas_reader *r, const char 
                 mimas_error_prefix(err, "%s: step %lld", input, (long long)f.step);
             break;
         }
-        cli_progress_frame(&prog, a->cmd, mimas_disperse_frames(d), (long long)f.step, f.time);
     }
     cli_progress_done(&prog);
     mimas_frame_free(&f);
@@ -478,4 +480,12 @@ const cli_command cmd_disperse = {
     sizeof options / sizeof options[0],
     1,
     run,
+    "# the grains that entered in the first half second, fitted where their spread\n"
+    "# exceeds a plug length of 5 cm, and the MSD of all grains relative to the\n"
+    "# conveying (docs/disperse.md)\n"
+    "mimas disperse run.h5 --cohort inserted:0:0.5 --fit-from 0.05 --remove-drift \\\n"
+    "    --cohorts cohort.tsv --diffusion D.tsv --plot disperse.png >msd.tsv\n"
+    "\n"
+    "# the MSD and the velocity autocorrelation of all particles, to standard output\n"
+    "mimas disperse run.h5 --vacf",
 };

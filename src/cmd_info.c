@@ -255,4 +255,11 @@ const cli_command cmd_info = {
     0,
     1,
     run,
+    "# what a data set holds: format, frames, times, counts per frame, box, quantities\n"
+    "mimas info run.h5\n"
+    "\n"
+    "# a LIGGGHTS run with per-atom and pair/gran/local dumps (a series as a quoted\n"
+    "# pattern); the contact columns are the keywords its compute pair/gran/local was given\n"
+    "K=pos,vel,id,force,force_normal,force_tangential,torque,torque_normal,torque_tangential,history,contactArea,delta,contactPoint\n"
+    "mimas info 'dump.*.atom.gz' --contacts 'dump.*.pgl.gz' --contact-columns $K",
 };

@@ -831,4 +831,13 @@ const cli_command cmd_plugs = {
     sizeof options / sizeof options[0],
     1,
     run,
+    "# plugs of a tube-flow run whose file records its tube (mimas simulate's\n"
+    "# plugtube): the plug list, the tracks, statistics along the tube and the\n"
+    "# space-time porosity diagram (docs/plugs.md)\n"
+    "mimas plugs tube.h5 --tracks tracks.tsv --stats stats.tsv --spacetime spacetime.png \\\n"
+    "    >plugs.tsv\n"
+    "\n"
+    "# every table in one HDF5 file, the axial profiles as space-time fields for\n"
+    "# ParaView, plugs denser than a porosity of 0.5 only\n"
+    "mimas plugs tube.h5 --threshold 0.5 -o plugs.h5 --axial axial.h5",
 };

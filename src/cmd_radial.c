@@ -354,4 +354,10 @@ const cli_command cmd_radial = {
     sizeof options / sizeof options[0],
     1,
     run,
+    "# radial profiles over the whole tube, every frame (docs/radial.md)\n"
+    "mimas radial tube.h5 -o radial.tsv\n"
+    "\n"
+    "# radial profiles in the plugs only, one group of probe planes at each plug's\n"
+    "# centre, from 0.05 s on\n"
+    "mimas radial tube.h5 --in-plugs --from 0.05 >radial-plugs.tsv",
 };

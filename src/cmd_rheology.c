@@ -40,26 +40,6 @@ typedef struct rheology_args {
     cli_table_options table;
 } rheology_args;
 
-/* "LO:HI", "LO:", ":HI": bounds left out are open. */
-static int parse_range(const char *arg, double *lo, double *hi)
-{
-    const char *colon = strchr(arg, ':');
-    if (!colon)
-        return -1;
-    char a[64], b[64];
-    size_t la = (size_t)(colon - arg), lb = strlen(colon + 1);
-    if (la >= sizeof a || lb >= sizeof b)
-        return -1;
-    memcpy(a, arg, la);
-    a[la] = '\0';
-    memcpy(b, colon + 1, lb + 1);
-    *lo = -INFINITY;
-    *hi = INFINITY;
-    if ((la && cli_parse_double(a, lo)) || (lb && cli_parse_double(b, hi)))
-        return -1;
-    return *hi > *lo ? 0 : -1;
-}
-
 static int on_option(void *ctx, size_t opt, const char *arg)
 {
     rheology_args *a = ctx;
@@ -70,7 +50,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
             return cli_fail(a->cmd, 1, "--min-shear-rate needs a rate >= 0, not '%s'", arg);
         return 0;
     case O_P_RANGE:
-        if (parse_range(arg, &a->o.p_lo, &a->o.p_hi))
+        if (cli_parse_range(arg, &a->o.p_lo, &a->o.p_hi))
             return cli_fail(a->cmd, 1, "--p-range needs LO:HI with LO < HI (either may be left "
                             "out), not '%s'", arg);
         return 0;
@@ -180,4 +160,15 @@ const cli_command cmd_rheology = {
     sizeof options / sizeof options[0],
     0,
     run,
+    "# yield line, mu(I) and viscosity laws with the shear stress and shear rate of\n"
+    "# Uhlig (2012), and the plots wet.yield.png, wet.mu_I.png, wet.eta.png\n"
+    "mimas average run.h5 --grid r=0.0147:0.11:39,z=0:0.038:20 --weight bins --from 5 \\\n"
+    "    --exclude-types 2 -o fields.h5\n"
+    "mimas rheology fields.h5 --definition luding --plot wet\n"
+    "\n"
+    "# the shear-rate controlled regime only (p > 250 Pa), into a file\n"
+    "mimas rheology fields.h5 --definition luding --p-range 250: -o windows.tsv\n"
+    "\n"
+    "# one number: the slope of the yield line and its error\n"
+    "mimas rheology fields.h5 | awk '$1 == \"yield\" && $2 == \"zeta\" { print $3, $4 }'",
 };

@@ -116,6 +116,7 @@ static int average_input(const band_args *a, const cli_inputs *in, mimas_reader 
     mimas_frame_init(&f);
     cli_progress prog;
     cli_progress_start(&prog, in);
+    cli_progress_total(&prog, r);
     cli_frames frames;
     cli_frames_init(&frames, r, &w, input);
     /* the grid comes from the first frame of the selection (rank 0's first
@@ -137,7 +138,7 @@ static int average_input(const band_args *a, const cli_inputs *in, mimas_reader 
         status = mimas_average_add(avg, &f, err);
         if (status && status != MIMAS_EIO)
             mimas_error_prefix(err, "%s: step %lld", input, (long long)f.step);
-        cli_progress_frame(&prog, a->cmd, frames.position + 1, (long long)f.step, f.time);
+        cli_progress_frame(&prog, a->cmd, frames.consumed, (long long)f.step, f.time);
         if (!status)
             status = cli_frames_next(&frames, &f, err);
     }
@@ -244,8 +245,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (!status && root)
         status = mimas_band_analyse(fs, &a.o, &b, &err);
     mimas_fieldset_close(fs);
+    mimas_band_plot_options po = {a.fenistein ? a.rs : 0, a.fenistein ? a.h : 0};
     if (!status && root && a.plot)
-        status = mimas_band_plot(b, a.plot, &err);
+        status = mimas_band_plot(b, &po, a.plot, &err);
     band_table t = {&a, b};
     if (!status && root)
         status = cli_write_table(a.output, write_table, &t, &err);
@@ -273,4 +275,15 @@ const cli_command cmd_shearband = {
     sizeof options / sizeof options[0],
     1,
     run,
+    "# the band of a ring shear cell turning at Omega = 2 pi 0.01 rad/s, from the field\n"
+    "# file of mimas average, with Fenistein and van Hecke's prediction for a split radius\n"
+    "# of 0.085 m and a fill height of 0.038 m, and a picture; the layers that could be fitted\n"
+    "mimas average run.h5 --grid r=0.0147:0.11:39,z=0:0.038:20 --weight bins --from 5 \\\n"
+    "    --exclude-types 2 -o fields.h5\n"
+    "mimas shearband fields.h5 --omega 0.0628319 --fenistein 0.085,0.038 --plot band.png \\\n"
+    "    | awk '$NF == \"ok\"'\n"
+    "\n"
+    "# straight from the particles (the r-z grid it chooses is said on standard error),\n"
+    "# with the four-parameter profile\n"
+    "mimas shearband run.h5 --omega 0.0628319 --from 5 --model 4",
 };

@@ -3,7 +3,6 @@
  * contacts and wall contacts (and a tube's gas fields) in the native format. */
 #include <config.h>
 
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -54,16 +53,19 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     }
 }
 
+typedef struct progress_ctx {
+    const cli_command *cmd;
+    cli_progress line;
+} progress_ctx;
+
 static void show_progress(void *ctx, const sim_progress *p)
 {
-    (void)ctx;
-    double eta = p->eta;
-    fprintf(stderr, "\rmimas simulate: step %lld/%lld  t = %.4g s  %.0f steps/s  "
-                    "%.3g particle-steps/s  %zu frames  ETA %02d:%02d:%02d ",
-            (long long)p->step, (long long)p->total, p->time, p->steps_per_s,
-            p->steps_per_s * (double)p->particles, p->frames, (int)(eta / 3600),
-            (int)fmod(eta / 60, 60), (int)fmod(eta, 60));
-    fflush(stderr);
+    progress_ctx *c = ctx;
+    char detail[160];
+    snprintf(detail, sizeof detail, "t = %.4g s, %.0f steps/s, %.3g particle-steps/s, %zu frames",
+             p->time, p->steps_per_s, p->steps_per_s * (double)p->particles, p->frames);
+    cli_progress_work(&c->line, c->cmd, "step", (double)p->step, (double)p->total, p->eta,
+                      detail);
 }
 
 static int run(const cli_command *cmd, int argc, char **argv)
@@ -106,12 +108,12 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if ((rc = sim_scenario_load(&sc, argv[first], &err)))
         return cli_fail(cmd, mimas_exit_status(rc), "%s", err.msg);
     char *line = cli_command_line(argc, argv);
-    int tty = !a.quiet && isatty(STDERR_FILENO);
-    sim_run_options o = {a.output, a.resume, a.stop_at, line, tty ? show_progress : NULL, NULL,
-                         argv[first]};
+    progress_ctx pc = {cmd, {0}};
+    cli_progress_begin(&pc.line, a.quiet);
+    sim_run_options o = {a.output, a.resume, a.stop_at, line,
+                         pc.line.on ? show_progress : NULL, &pc, argv[first]};
     rc = sim_run(&sc, &o, &err);
-    if (tty)
-        fputc('\n', stderr);
+    cli_progress_done(&pc.line);
     free(line);
     if (rc)
         return cli_fail(cmd, mimas_exit_status(rc), "%s", err.msg);
@@ -147,4 +149,23 @@ const cli_command cmd_simulate = {
     sizeof options / sizeof options[0],
     0,
     run,
+    "# a complete scenario file: every key with its default, unit and meaning\n"
+    "mimas simulate --print-defaults ringshear >ringshear.ini\n"
+    "\n"
+    "# a small periodic box of 100 particles for 0.01 s (the keys not given keep\n"
+    "# their defaults), written every 1000 steps\n"
+    "cat >gas.ini <<EOF\n"
+    "[scenario]\n"
+    "type = box\n"
+    "[run]\n"
+    "output_every = 1000\n"
+    "[box]\n"
+    "count = 100\n"
+    "time = 0.01\n"
+    "EOF\n"
+    "mimas simulate gas.ini -o gas.h5 -q\n"
+    "\n"
+    "# stop after 1000 steps (with a checkpoint), then continue bit for bit\n"
+    "mimas simulate gas.ini -o gas.h5 --stop-at 1000 --force -q\n"
+    "mimas simulate gas.ini -o gas.h5 --resume -q",
 };

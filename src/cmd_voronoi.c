@@ -277,6 +277,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     mimas_bytes result = {0};
     cli_progress prog;
     cli_progress_start(&prog, &in);
+    cli_progress_total(&prog, r);
     cli_frames frames;
     cli_frames_init(&frames, r, &a.window, argv[first]);
     while (!status && (status = cli_frames_next(&frames, &f, &err)) == MIMAS_OK) {
@@ -287,7 +288,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
             status = pack_result(vor, &f, &parts, &result, &err);
         if (!status)
             status = mimas_par_ordered_put(order, frames.position, &result, &err);
-        cli_progress_frame(&prog, cmd, frames.position + 1, (long long)f.step, f.time);
+        cli_progress_frame(&prog, cmd, frames.consumed, (long long)f.step, f.time);
     }
     cli_progress_done(&prog);
     status = mimas_par_ordered_finish(order, status, frames.position, &err);
@@ -345,4 +346,16 @@ const cli_command cmd_voronoi = {
     sizeof options / sizeof options[0],
     1,
     run,
+    "# per-particle radical cells of a ring shear cell bounded by its walls (the inner and\n"
+    "# the outer cylinder, the bottom) and cut 4 mm about each particle at the free surface,\n"
+    "# stored with the frames; then mapped onto an r-z grid\n"
+    "mimas voronoi run.h5 --radical --walls cylinder:0.0147:inner,cylinder:0.11,plane:z:0 \\\n"
+    "    --max-extent 0.004 --exclude-types 2 -o run-voro.h5\n"
+    "mimas average run-voro.h5 --grid r=0.0147:0.11:39,z=0:0.038:20 --weight voronoi \\\n"
+    "    --from 5 --exclude-types 2 --fields nu\n"
+    "\n"
+    "# a periodic LIGGGHTS box with its contacts: cells and per-particle stresses as a table\n"
+    "K=pos,vel,id,force,force_normal,force_tangential,torque,torque_normal,torque_tangential,history,contactArea,delta,contactPoint\n"
+    "mimas voronoi 'dump.*.atom.gz' --contacts 'dump.*.pgl.gz' --contact-columns $K \\\n"
+    "    --tsv cells.tsv",
 };

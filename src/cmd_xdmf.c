@@ -63,4 +63,9 @@ const cli_command cmd_xdmf = {
     sizeof options / sizeof options[0],
     0,
     run,
+    "# the sidecar beside a native trajectory, then open it in ParaView (paraview run.xdmf)\n"
+    "mimas xdmf run.h5\n"
+    "\n"
+    "# under another name (one input)\n"
+    "mimas xdmf run.h5 -o view.xdmf",
 };

@@ -15,5 +15,6 @@ extern const cli_command cmd_voronoi;
 extern const cli_command cmd_xdmf;
 extern const cli_command cmd_plugs;
 extern const cli_command cmd_radial;
+extern const cli_command cmd_plot;
 
 #endif

@@ -1,6 +1,6 @@
 /* mimas error reporting: the library never prints or exits; it fills a
  * mimas_error and returns its code.  The front end prints the message and
- * maps the code to an exit status (exit status 0, 1 for bad usage, 2 for bad data). */
+ * maps the code to an exit status (docs/api.md: 0, 1 for bad usage, 2 for bad data). */
 #ifndef MIMAS_ERROR_H
 #define MIMAS_ERROR_H
 

@@ -1,4 +1,4 @@
-/* The mimas data model (docs/format.md and docs/api.md): a frame is one snapshot with
+/* The mimas data model (docs/format.md and docs/api.md, "Frame"): a frame is one snapshot with
  * its box, particles, particle-particle contacts and particle-wall contacts.
  *
  * Each of the three tables is a struct of arrays, sized per frame and owned by

@@ -22,6 +22,7 @@ static const cli_command *const commands[] = {
     &cmd_disperse,
     &cmd_plugs,
     &cmd_radial,
+    &cmd_plot,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 

@@ -6,6 +6,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <spawn.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,6 +43,93 @@ void mimas_plot_quote(const char *s, char *buf, size_t len)
     }
     buf[k++] = '\'';
     buf[k] = '\0';
+}
+
+void mimas_plot_literal(const char *text, char *buf, size_t len)
+{
+    size_t k = 0;
+    for (; *text && k + 3 < len; text++) {
+        if (strchr("_^@&{}~\\", *text))
+            buf[k++] = '\\';
+        buf[k++] = *text;
+    }
+    if (len)
+        buf[k < len ? k : len - 1] = '\0';
+}
+
+void mimas_plot_value_error(double v, double e, char *buf, size_t len)
+{
+    if (!(isfinite(e) && e > 0) || !isfinite(v) || e < 1e-9 * fabs(v)) {
+        snprintf(buf, len, "%.4g", v);
+        return;
+    }
+    /* outside 1e-4 .. 1e6 a common power of ten is factored out */
+    int ex = (int)floor(log10(fmax(fabs(v), e)));
+    int sci = ex < -4 || ex >= 6;
+    double scale = sci ? pow(10, ex) : 1, vs = v / scale, es = e / scale;
+    /* decimals that give the error two significant digits, after rounding
+     * (0.0996 is 0.10, not 0.100) */
+    int d = 1 - (int)floor(log10(es));
+    if (round(es * pow(10, d)) >= 100)
+        d--;
+    char a[48], b[48];
+    if (d >= 0) {
+        snprintf(a, sizeof a, "%.*f", d, vs);
+        snprintf(b, sizeof b, "%.*f", d, es);
+    } else {
+        double q = pow(10, -d);
+        snprintf(a, sizeof a, "%.0f", round(vs / q) * q);
+        snprintf(b, sizeof b, "%.0f", round(es / q) * q);
+    }
+    /* a value that rounds to zero has no sign */
+    const char *va = a[0] == '-' && strspn(a + 1, "0.") == strlen(a + 1) ? a + 1 : a;
+    if (sci)
+        snprintf(buf, len, "(%s ± %s)×10^{%d}", va, b, ex);
+    else
+        snprintf(buf, len, "%s ± %s", va, b);
+}
+
+/* x y z r, phi as φ: the components of a vector or tensor field */
+static void components(const char *c, char *buf, size_t len)
+{
+    size_t k = 0;
+    for (; *c && k + 3 < len; c++) {
+        if (!strncmp(c, "phi", 3)) {
+            k += (size_t)snprintf(buf + k, len - k, "φ");
+            c += 2;
+        } else
+            buf[k++] = *c;
+    }
+    buf[k < len ? k : len - 1] = '\0';
+}
+
+void mimas_plot_symbol(const char *field, char *buf, size_t len)
+{
+    static const struct {
+        const char *name, *symbol; /* symbol: components become its subscript */
+    } table[] = {
+        {"shear_rate_luding", "γ̇_{L}"}, {"shear_rate", "γ̇"}, {"tau_phi", "τ_{φ}"},
+        {"Z_nr", "Z_{nr}"}, {"kstress", "σ^{k}"}, {"cstress", "σ^{c}"}, {"stress", "σ"},
+        {"fabric", "F"}, {"wall_force", "f^{w}"}, {"rho", "ρ"}, {"nu", "ν"}, {"omega", "ω"},
+        {"tau", "τ"}, {"mu", "μ"}, {"eta", "η"}, {"v", "v"}, {"n", "n"}, {"p", "p"},
+        {"T", "T"}, {"Z", "Z"}, {"d", "d"}, {"I", "I"},
+    };
+    for (size_t k = 0; k < sizeof table / sizeof table[0]; k++) {
+        size_t n = strlen(table[k].name);
+        if (strncmp(field, table[k].name, n) != 0)
+            continue;
+        if (field[n] == '\0') {
+            snprintf(buf, len, "%s", table[k].symbol);
+            return;
+        }
+        if (field[n] == '_' && field[n + 1] && !strchr(table[k].symbol, '_')) {
+            char comp[32];
+            components(field + n + 1, comp, sizeof comp);
+            snprintf(buf, len, "%s_{%s}", table[k].symbol, comp);
+            return;
+        }
+    }
+    mimas_plot_literal(field, buf, len);
 }
 
 static void path_in(const mimas_plot *p, const char *name, char *buf, size_t len)
@@ -196,7 +284,7 @@ int mimas_plot_render(mimas_plot *p, int width, int height, const char *script, 
     if (fp) {
         mimas_plot_quote(p->tmp, q_out, sizeof q_out);
         mimas_plot_quote(p->dir, q_dir, sizeof q_dir);
-        fprintf(fp, "set terminal pngcairo size %d,%d noenhanced font ',10'\n"
+        fprintf(fp, "set encoding utf8\nset terminal pngcairo size %d,%d enhanced font ',10'\n"
                     "set output %s\ndatadir = %s\n%s\nunset output\n",
                 width, height, q_out, q_dir, script);
         if (fclose(fp) != 0)

@@ -1,4 +1,4 @@
-/* Pictures by gnuplot (DESIGN.md: --plot FILE.png): the data go to files
+/* Pictures by gnuplot (the commands' --plot FILE.png): the data go to files
  * in a scratch folder, gnuplot runs a script on them (its messages are
  * kept, not printed), and the PNG is written under a temporary name and
  * renamed into place when complete. */
@@ -32,6 +32,22 @@ int mimas_plot_commit(mimas_plot *p, mimas_error *err);
 void mimas_plot_abort(mimas_plot *p);
 /* s as a gnuplot single-quoted string ('' for each quote) into buf. */
 void mimas_plot_quote(const char *s, char *buf, size_t len);
+/* The symbol of a field of docs/fields.md in gnuplot's enhanced text (the
+ * terminal is enhanced, UTF-8): "nu" -> "ν", "stress_rphi" -> "σ_{rφ}",
+ * "shear_rate" -> "γ̇", "tau_phi" -> "τ_{φ}"; other names as they are, with
+ * the characters enhanced text would interpret escaped.  For single-quoted
+ * strings in scripts. */
+void mimas_plot_symbol(const char *field, char *buf, size_t len);
+/* text with the characters of enhanced text (_ ^ @ & { } ~) escaped, for
+ * single-quoted strings in scripts (a file name in a title). */
+void mimas_plot_literal(const char *text, char *buf, size_t len);
+/* A value with its standard error for a key, in enhanced text: both to the
+ * decimal place of the error's second significant digit ("0.170 ± 0.026",
+ * "410 ± 61", "-7 ± 12"), with a power of ten factored out when the larger
+ * of the two is below 1e-4 or from 1e6 on ("(1.23 ± 0.45)×10^{-7}").  A
+ * value without a usable error (not finite, not positive, or below 1e-9 of
+ * the value) is printed alone to 4 digits. */
+void mimas_plot_value_error(double v, double e, char *buf, size_t len);
 
 #ifdef __cplusplus
 }

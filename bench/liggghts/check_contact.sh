@@ -1,13 +1,13 @@
 #!/bin/sh
 # check_contact.sh: runs contact_check.in (two spheres colliding head-on) with limitForce off
 # and on, and compares the coefficient of restitution e and the contact duration t_c with the
-# exact values of the linear spring-dashpot (PHYSICS.md 2.1), computed here from
-# k_n = 110 N/m, gamma_n = 2e-3 N s/m and m* = m/2 (PHYSICS.md check values:
+# exact values of the linear spring-dashpot (docs/theory.md §2.1), computed here from
+# k_n = 110 N/m, gamma_n = 2e-3 N s/m and m* = m/2 (docs/theory.md check values:
 # t_c = 6.1372e-4 s, e = 0.86371). Had LIGGGHTS multiplied gamma_n by m* (absolute_damping
 # off), e would be 1.0000. With limitForce off the result must agree within 1 % (t_c is
 # resolved to one step, dt/t_c = 0.8 %); with limitForce on, contact ends when the force
 # (not the overlap) returns to zero, so e and t_c are printed for information
-# (PHYSICS.md 2.1: t_r = (pi - 2 atan(eta0/omega))/omega).
+# (docs/theory.md §2.1: t_r = (pi - 2 atan(eta0/omega))/omega).
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)

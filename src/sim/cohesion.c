@@ -1,4 +1,4 @@
-/* Cohesion laws (PHYSICS.md 2.4): JKR-type contact cohesion and pendular
+/* Cohesion laws (docs/theory.md §2.4): JKR-type contact cohesion and pendular
  * liquid bridges, with Willett's fit as the reference.  The edge cases are
  * described in cohesion.h and docs/contact-laws.md. */
 #include <config.h>
@@ -24,7 +24,7 @@ double mimas_bridge_half_angle(const mimas_bridge *b, double r_p, double s)
         return 0;
     if (s < 0)
         s = 0;
-    /* 000 eq. 2.7 with s* = s/d_p = s/(2 r_p) */
+    /* Uhlig (2012), eq. 2.7 with s* = s/d_p = s/(2 r_p) */
     double x = b->volume /
                (0.96 * r_p * r_p * r_p * (1 + 3 * s / r_p) * (1 + 1.1 * sin(b->theta)));
     return x >= 1 ? M_PI / 2 : asin(pow(x, 0.25));
@@ -55,7 +55,7 @@ double mimas_bridge_force(const mimas_bridge *b, double r_p, double s)
     return F < 0 ? 0 : F;
 }
 
-/* Willett et al. 2000, appendix (000 appendix eq. 8.1-8.4):
+/* Willett et al. 2000, appendix (Uhlig 2012, appendix eq. 8.1-8.4):
  * A_k = sum_j (c_kj0 + c_kj1 theta + c_kj2 theta^2) L^j, theta in rad,
  * L = ln(V_B/r_p^3). */
 static const double willett[4][4][3] = {

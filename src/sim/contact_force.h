@@ -1,4 +1,4 @@
-/* The contact force of one contact (PHYSICS.md 2.1-2.4), inline because the
+/* The contact force of one contact (docs/theory.md §2.1-§2.4), inline because the
  * pair loop of every step calls it once per contact. */
 #ifndef MIMAS_SIM_CONTACT_FORCE_H
 #define MIMAS_SIM_CONTACT_FORCE_H
@@ -35,7 +35,7 @@ static inline __attribute__((always_inline)) double dem_contact_force(const dem_
     if (g->delta > 0) {
         double k_n, k_t, gamma_n, gamma_t;
         if (L->model == SIM_HERTZ) {
-            /* LIGGGHTS' hertz form (PHYSICS 2.2) */
+            /* LIGGGHTS' hertz form (docs/theory.md §2.2) */
             double sq = sqrt(g->R_eff * g->delta);
             double S_n = 2 * L->E_star * sq, S_t = 8 * L->G_star * sq;
             k_n = 4.0 / 3.0 * L->E_star * sq;
@@ -49,13 +49,13 @@ static inline __attribute__((always_inline)) double dem_contact_force(const dem_
                                             : L->gamma_n;
             gamma_t = L->gamma_t;
         }
-        /* never attractive (PHYSICS 2.1, 004 eq. 3.15) unless the clip is off */
+        /* never attractive (docs/theory.md §2.1; Strauß 2005, eq. 3.15) unless the clip is off */
         fn = k_n * g->delta - gamma_n * vn;
         if (fn < 0 && L->clip)
             fn = 0;
         if (L->w > 0)
             attraction += mimas_jkr_force(L->w, L->E_tilde, g->R_eff, g->delta);
-        /* tangential history spring (PHYSICS 2.3): turn xi into the current
+        /* tangential history spring (docs/theory.md §2.3): turn xi into the current
          * tangent plane keeping its length, add v_t dt */
         double vt[3], len0sq = dem_dot(xi, xi), xn = dem_dot(xi, n);
         for (int k = 0; k < 3; k++) {
@@ -86,7 +86,7 @@ static inline __attribute__((always_inline)) double dem_contact_force(const dem_
         xi[0] = xi[1] = xi[2] = 0;
     }
     if (bridge_volume > 0) {
-        /* PHYSICS 2.4: r_p = 2 R* for unequal spheres; gap s >= 0 */
+        /* docs/theory.md §2.4: r_p = 2 R* for unequal spheres; gap s >= 0 */
         mimas_bridge b = {bridge_volume, L->surface_tension, L->contact_angle};
         double s = g->delta < 0 ? -g->delta : 0;
         attraction += mimas_bridge_force(&b, 2 * g->R_eff, s);
@@ -103,7 +103,7 @@ static inline __attribute__((always_inline)) double dem_contact_force(const dem_
     }
     double wm = L->mu_r > 0 ? sqrt(dem_dot(g->w_rel, g->w_rel)) : 0;
     if (wm > 0 && g->delta > 0) {
-        /* rolling friction (PHYSICS 2.3, 002 eq. 2.11) */
+        /* rolling friction (docs/theory.md §2.3; Bierwisch 2009, eq. 2.11) */
         for (int k = 0; k < 3; k++) {
             double tr = L->mu_r * (fn > 0 ? fn : 0) * g->w_rel[k] / wm;
             ti[k] -= tr;

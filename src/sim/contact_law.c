@@ -1,4 +1,4 @@
-/* Contact laws (PHYSICS.md 2.1-2.5). */
+/* Contact laws (docs/theory.md §2.1-§2.5). */
 #include <config.h>
 
 #include "contact_law.h"
@@ -50,7 +50,7 @@ double dem_linear_damping_factor(double e, int clip)
 void dem_linear_collision(double k_n, double gamma_n, double m_eff, int clip, double *t_c,
                           double *e)
 {
-    /* PHYSICS 2.1: omega0^2 = k_n/m*, eta0 = gamma_n/(2 m*) */
+    /* docs/theory.md §2.1: omega0^2 = k_n/m*, eta0 = gamma_n/(2 m*) */
     double eta0 = gamma_n / (2 * m_eff), w = sqrt(k_n / m_eff - eta0 * eta0);
     *t_c = clip ? (M_PI - 2 * atan(eta0 / w)) / w : M_PI / w;
     *e = exp(-eta0 * *t_c);
@@ -60,7 +60,7 @@ void dem_law_make(dem_law *law, const sim_contact_params *p, double alpha)
 {
     memset(law, 0, sizeof *law);
     law->model = p->model;
-    /* coarse graining (PHYSICS 2.5): linear stiffness x alpha, damping x alpha^2,
+    /* coarse graining (docs/theory.md §2.5): linear stiffness x alpha, damping x alpha^2,
      * so that forces scale with alpha^2; moduli, e and mu are unchanged */
     law->k_n = p->k_n * alpha;
     law->k_t = p->k_t * alpha;
@@ -72,13 +72,13 @@ void dem_law_make(dem_law *law, const sim_contact_params *p, double alpha)
     if (p->model == SIM_HERTZ) {
         double l = log(p->restitution), E = p->youngs_modulus, nu = p->poisson;
         law->beta = p->restitution < 1 ? l / sqrt(l * l + M_PI * M_PI) : 0;
-        /* PHYSICS 2.2, both sides of the same material */
+        /* docs/theory.md §2.2, both sides of the same material */
         law->E_star = E / (2 * (1 - nu * nu));
         law->G_star = E / (4 * (2 - nu) * (1 + nu));
     }
     law->mu = p->friction;
     law->mu_r = p->rolling_friction * alpha;        /* a length */
-    /* the attractions scale so that they too grow like alpha^2 (PHYSICS 2.5) */
+    /* the attractions scale so that they too grow like alpha^2 (docs/theory.md §2.5) */
     law->w = p->cohesion_energy * alpha;
     law->E_tilde = p->youngs_modulus / (1 - p->poisson * p->poisson);
     law->surface_tension = p->surface_tension * alpha;

@@ -1,4 +1,4 @@
-/* Contact laws of the DEM core (PHYSICS.md section 2): normal force (linear
+/* Contact laws of the DEM core (docs/theory.md §2): normal force (linear
  * spring-dashpot or Hertz-Mindlin), tangential history spring with Coulomb
  * truncation, rolling friction, JKR-type cohesion and pendular liquid
  * bridges.  The same function serves particle-particle and particle-wall
@@ -8,7 +8,7 @@
 
 #include "scenario.h"
 
-/* The law of one type pair, with the coarse-grain scaling applied (PHYSICS 2.5). */
+/* The law of one type pair, with the coarse-grain scaling applied (docs/theory.md §2.5). */
 typedef struct dem_law {
     int model;                 /* SIM_LINEAR, SIM_HERTZ */
     double k_n, k_t, gamma_n, gamma_t;   /* linear */
@@ -26,7 +26,7 @@ typedef struct dem_law {
 void dem_law_make(dem_law *law, const sim_contact_params *p, double alpha);
 
 /* gamma_n = factor * sqrt(k_n m*) gives restitution e for the linear law
- * (PHYSICS 2.1).  Without clip: factor = 2 (-ln e)/sqrt(pi^2 + ln^2 e).  With
+ * (docs/theory.md §2.1).  Without clip: factor = 2 (-ln e)/sqrt(pi^2 + ln^2 e).  With
  * the clip the particles part when the force returns to zero, at
  * t_r = (pi - 2 atan(x))/omega with x = eta0/omega, and e = exp(-x (pi - 2 atan x))
  * (the velocity factor there is exactly 1); solved for x, factor = 2x/sqrt(1+x^2).
@@ -43,7 +43,7 @@ typedef struct dem_contact_geom {
     double delta;      /* overlap R_i + R_j - |r_i - r_j| (< 0: gap) */
     double r_i, r_j;   /* radii (the lever arms of the torques); r_j = 0 for a wall */
     double R_eff, m_eff;
-    double vc[3];      /* velocity of i's surface point minus that of j (PHYSICS 2) */
+    double vc[3];      /* velocity of i's surface point minus that of j (docs/theory.md §1) */
     double w_rel[3];   /* w_i - w_j (rolling friction) */
 } dem_contact_geom;
 

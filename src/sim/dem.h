@@ -67,7 +67,7 @@ typedef struct dem_nlist {
     size_t n;                /* particles the list was built for */
     size_t *start;           /* n + 1: entries of i are start[i] .. start[i+1]-1 */
     dem_entry *e;
-    double *bv;              /* per entry: V_B of its liquid bridge (docs/theory.md §2.4), 0 without */
+    double *bv;              /* per entry: V_B of its bridge (docs/theory.md §2.4), 0 without */
     size_t ne, cap;
     size_t *tstart;          /* transposed: entries where particle j is the second one */
     size_t *tk;              /* entry of each transposed slot */

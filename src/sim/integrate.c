@@ -1,5 +1,5 @@
-/* Velocity Verlet (docs/theory.md §3; Bierwisch 2009, eq. 2.2; Strauß 2005, eq. 3.36-3.37) for the free
- * particles; glued particles follow their rigid motion exactly. */
+/* Velocity Verlet (docs/theory.md §3; Bierwisch 2009, eq. 2.2; Strauß 2005,
+ * eqs. 3.36-3.37) for the free particles; glued particles follow their rigid motion exactly. */
 #include <config.h>
 
 #include <math.h>

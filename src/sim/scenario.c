@@ -204,7 +204,7 @@ int sim_scenario_type(const char *name)
 
 static void contact_defaults(sim_contact_params *c)
 {
-    /* the ring shear cell of Uhlig (2012, Table 4.2); docs/theory.md §7 */
+    /* the ring shear cell of Uhlig (2012, Table 4.2; docs/theory.md §7.1) */
     *c = (sim_contact_params){.model = SIM_LINEAR, .k_n = 110, .k_t = 12, .gamma_n = 2e-3,
                               .gamma_t = 0.5e-3, .restitution = 0, .normal_clip = 1,
                               .youngs_modulus = 0,
@@ -233,7 +233,7 @@ void sim_scenario_defaults(sim_scenario *s, int type)
     for (int a = 0; a < SIM_MAX_TYPES; a++)
         for (int b = 0; b < SIM_MAX_TYPES; b++)
             contact_defaults(&s->contact[a][b]);
-    /* the split-bottom cell of Uhlig (2012); docs/theory.md §7 */
+    /* the split-bottom cell of Uhlig (2012; docs/theory.md §7.1) */
     s->r_in = 0.0147;
     s->r_split = 0.085;
     s->r_out = 0.11;
@@ -661,6 +661,24 @@ static void print_value(FILE *out, const key_desc *k, double v)
     }
 }
 
+/* text as "; " comment lines of at most width characters, broken at spaces */
+static void print_comment(FILE *out, const char *text, size_t width)
+{
+    while (*text) {
+        size_t n = strlen(text);
+        if (n > width) {
+            n = width;
+            while (n > 0 && text[n] != ' ')
+                n--;
+            if (n == 0)
+                n = strcspn(text, " ");
+        }
+        fprintf(out, "; %.*s\n", (int)n, text);
+        text += n;
+        text += strspn(text, " ");
+    }
+}
+
 void sim_scenario_print(const sim_scenario *s, FILE *out)
 {
     fprintf(out, "# mimas simulate scenario (%s); every key with its default.\n"
@@ -677,10 +695,20 @@ void sim_scenario_print(const sim_scenario *s, FILE *out)
         }
         const void *base = strcmp(section, "contact") == 0 ? (const void *)&s->contact[1][1]
                                                            : (const void *)s;
+        char text[600];
+        snprintf(text, sizeof text, "%s%s%s%s", k->meaning, *k->unit ? " (" : "", k->unit,
+                 *k->unit ? ")" : "");
+        /* INI readers limit the line (inih: 200 bytes): a long meaning goes
+         * on comment lines of its own, before the key */
+        int own_lines = strlen(k->name) + strlen(text) > 140;
+        if (own_lines)
+            print_comment(out, text, 90);
         fprintf(out, "%s = ", k->name);
         print_value(out, k, load(base, k));
-        fprintf(out, "    ; %s%s%s%s\n", k->meaning, *k->unit ? " (" : "", k->unit,
-                *k->unit ? ")" : "");
+        if (own_lines)
+            fputc('\n', out);
+        else
+            fprintf(out, "    ; %s\n", text);
     }
 }
 

@@ -1,7 +1,7 @@
-/* The pull-off test (000 Sec. 4.1): two equal particles joined by a liquid
+/* The pull-off test (Uhlig 2012, Sec. 4.1): two equal particles joined by a liquid
  * bridge, initially touching, pulled apart along x at constant speed until
  * the gap is `distance` radii.  Both move kinematically; the frames record
- * the bridge force against the gap (compare with Willett, PHYSICS 2.4). */
+ * the bridge force against the gap (compare with Willett, docs/theory.md §2.4). */
 #include <config.h>
 
 #include <math.h>

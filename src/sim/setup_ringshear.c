@@ -1,4 +1,4 @@
-/* The split-bottom ring shear cell (PHYSICS.md 7, 000 Sec. 3.2): an annulus
+/* The split-bottom ring shear cell (docs/theory.md §7.1; Uhlig 2012, Sec. 3.2): an annulus
  * between a static inner cylinder (r_in) and an outer cylinder (r_out) that
  * turns at Omega together with the bottom outside the split radius r_split.
  * Particles are inserted on a jittered lattice without overlap, settle under

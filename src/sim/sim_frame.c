@@ -75,7 +75,7 @@ static int fill_contacts(const dem_system *s, mimas_contacts *c, mimas_error *er
             double delta = s->radius[i] + s->radius[j] - dist;
             for (int q = 0; q < 3; q++) {
                 n[q] = d[q] / dist;
-                /* docs/theory.md §2: c = r_i - (R_i - delta/2) n */
+                /* docs/theory.md §1: c = r_i - (R_i - delta/2) n */
                 c->point[row][q] = s->x[i][q] - (s->radius[i] - delta / 2) * n[q];
                 c->force[row][q] = -nl->eft[nl->tpos[k]].f[q];
             }

@@ -11,6 +11,7 @@
 #include "checkpoint.h"
 #include "native.h"
 #include "setup.h"
+#include "xdmf.h"
 #include "tmpfiles.h"
 
 static double now(void)
@@ -88,8 +89,13 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
     int rc = sim_setup(&s, sc, &plan, err);
     size_t nstate = rc ? 0 : sim_plan_state(&plan, state, 16);
     if (!rc && o->resume) {
+        /* the continued file is written under a temporary name and renamed
+         * over RUN.h5 at once, so the writer cannot name it in the sidecar
+         * when it closes: the sidecar is written here after the close */
+        mimas_writer_options wr = wo;
+        wr.xdmf = 0;
         if (!(rc = sim_checkpoint_read(&s, state, nstate, ckpt, err)))
-            rc = reopen_output(o, s.step, &w, &wo, err);
+            rc = reopen_output(o, s.step, &w, &wr, err);
     } else if (!rc) {
         /* everything that can fail on the scenario is done before the output
          * is created: a refused scenario leaves no file and harms none */
@@ -142,6 +148,11 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
         int rc2 = mimas_writer_close(w, rc ? NULL : err);
         if (!rc)
             rc = rc2;
+        if (!rc && o->resume) {
+            char sidecar[4200];
+            mimas_xdmf_path(o->output, NULL, sidecar, sizeof sidecar);
+            rc = mimas_xdmf_trajectory(o->output, sidecar, err);
+        }
     }
     if (rc == MIMAS_EDATA && o->scenario && strncmp(err->msg, "step ", 5) == 0)
         mimas_error_prefix(err, "%s", o->scenario);

@@ -7,7 +7,7 @@
 
 void ring_spec_default(ring_spec *s)
 {
-    /* 000: r_in 0.0147 m, r_out 0.11 m, fill height 0.038 m, d = 2 mm,
+    /* Uhlig (2012): r_in 0.0147 m, r_out 0.11 m, fill height 0.038 m, d = 2 mm,
      * rho = 2000 kg/m3, Omega = 2 pi 0.01 rad/s; Table 4.8 dry: Rc 0.0777 m,
      * W 0.0246 m (at the surface) */
     s->r_in = 0.0147;

@@ -1,7 +1,7 @@
 /* Frames of a split-bottom ring shear cell for the shear-band tests:
  * particles spread uniformly over an annulus, moving about the z axis with
- * the angular velocity Omega (0.5 + 0.5 erf((r - Rc(z))/W)) (PHYSICS 7,
- * 000 eq. 2.11), Rc(z) = rc + rc_slope z, plus Gaussian velocity noise. */
+ * the angular velocity Omega (0.5 + 0.5 erf((r - Rc(z))/W)) (docs/theory.md §7.1;
+ * Uhlig 2012, eq. 2.11), Rc(z) = rc + rc_slope z, plus Gaussian velocity noise. */
 #ifndef MIMAS_TEST_RING_FRAME_H
 #define MIMAS_TEST_RING_FRAME_H
 
@@ -18,7 +18,7 @@ typedef struct ring_spec {
     size_t particles;
 } ring_spec;
 
-/* The dry band of 000 Table 4.8 in the cell of 000 (PHYSICS 7). */
+/* The dry band of Uhlig (2012, Table 4.8) in Uhlig's cell (docs/theory.md §7.1). */
 void ring_spec_default(ring_spec *s);
 /* omega(r, z)/Omega of the spec. */
 double ring_profile(const ring_spec *s, double r, double z);

@@ -1,5 +1,5 @@
 /* mimas average: conservation identities and analytic fields, with expected
- * values computed here independently of the library (PHYSICS 6). */
+ * values computed here independently of the library (docs/theory.md §6). */
 #include <config.h>
 
 #include <setjmp.h>

@@ -1,8 +1,8 @@
-/* The cohesion laws (src/sim/cohesion.c) against PHYSICS.md 2.4 check values
+/* The cohesion laws (src/sim/cohesion.c) against docs/theory.md §2.4 check values
  * and independent evaluations: Weigert's half-filling angle, the liquid-bridge
  * force rebuilt from the meniscus geometry and its small-bridge (Derjaguin)
  * limit, rupture, Willett's table and coefficients, the bridge model against
- * Willett as 000 reports it, the JKR minimum found numerically. */
+ * Willett as Uhlig (2012) reports it, the JKR minimum found numerically. */
 #include <config.h>
 
 #include <math.h>
@@ -22,7 +22,7 @@ static const double deg = M_PI / 180;
 static void test_weigert_half_angle(void **state)
 {
     (void)state;
-    /* PHYSICS 2.4: V_B = 0.1 r_p^3, s = 0, theta = 0 gives 34.62 deg */
+    /* docs/theory.md §2.4: V_B = 0.1 r_p^3, s = 0, theta = 0 gives 34.62 deg */
     const double radii[] = {1, 1e-3};
     for (int k = 0; k < 2; k++) {
         double r = radii[k];
@@ -125,7 +125,7 @@ static void test_bridge_rupture(void **state)
     assert_close(mimas_bridge_force(&wide, r, 0), 0, 0);
 }
 
-/* PHYSICS 2.4 table, V_B/r_p^3 = 0.1; S is Willett's half-separation
+/* docs/theory.md §2.4 table, V_B/r_p^3 = 0.1; S is Willett's half-separation
  * (s/2) sqrt(r_p/V_B) (docs/contact-laws.md) */
 static void test_willett_table(void **state)
 {
@@ -158,10 +158,10 @@ static void test_willett_table(void **state)
     assert_close(mimas_willett_force(&b, r, 0) / (2 * M_PI * gamma * r), exp(A0[0]), 1e-6);
 }
 
-/* 000 Sec. 4.1 compares its model (this boundary method) with Willett for
+/* Uhlig (2012), Sec. 4.1 compares its model (this boundary method) with Willett for
  * V_B/r_p^3 = 0.1: at theta = 0 it lies 18.26 % below on average up to
  * rupture; at 20 deg it lies above Willett for 0.25 < S < 0.8 only. */
-static void test_bridge_vs_willett_as_in_000(void **state)
+static void test_bridge_vs_willett_as_uhlig_reports(void **state)
 {
     (void)state;
     const double r = 1e-3, gamma = 0.072, V = 0.1 * r * r * r;
@@ -172,7 +172,7 @@ static void test_bridge_vs_willett_as_in_000(void **state)
         double s = sc * i / n, W = mimas_willett_force(&b, r, s);
         sum += (mimas_bridge_force(&b, r, s) - W) / W;
     }
-    print_message("# theta = 0: mean deviation from Willett %.2f %% (000: -18.26 %%)\n",
+    print_message("# theta = 0: mean deviation from Willett %.2f %% (Uhlig 2012: -18.26 %%)\n",
                   100 * sum / n);
     assert_close(100 * sum / n, -18.26, 1.0);
     mimas_bridge b20 = {V, gamma, 20 * deg};
@@ -244,7 +244,7 @@ int main(void)
         cmocka_unit_test(test_bridge_small_limit),
         cmocka_unit_test(test_bridge_rupture),
         cmocka_unit_test(test_willett_table),
-        cmocka_unit_test(test_bridge_vs_willett_as_in_000),
+        cmocka_unit_test(test_bridge_vs_willett_as_uhlig_reports),
         cmocka_unit_test(test_jkr_minimum),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,5 +1,5 @@
-/* The DEM core against analytic results and PHYSICS.md check values:
- * binary collisions (linear law, 000 check values, requested restitution,
+/* The DEM core against analytic results and docs/theory.md check values:
+ * binary collisions (linear law, Uhlig's check values, requested restitution,
  * Hertz), energy conservation of an elastic gas, a sphere on an incline,
  * the JKR minimum, thread independence. */
 #include <config.h>
@@ -81,10 +81,10 @@ static void collide(const sim_scenario *sc, double v, double *e, double *t_overl
     dem_free(&s);
 }
 
-/* 000 Table 4.2: d = 2 mm, rho = 2000, k_n = 110 N/m, gamma_n = 2e-3 N s/m
+/* Uhlig (2012), Table 4.2: d = 2 mm, rho = 2000, k_n = 110 N/m, gamma_n = 2e-3 N s/m
  * give t_c = 6.1372e-4 s and e = 0.86371 (without the clip: the contact ends
  * when the overlap does) */
-static void test_linear_000_check(void **state)
+static void test_linear_uhlig_check(void **state)
 {
     (void)state;
     sim_scenario sc;
@@ -120,7 +120,7 @@ static void test_linear_requested_restitution(void **state)
         }
 }
 
-/* coarse graining by alpha (PHYSICS 2.5): k x alpha, gamma x alpha^2, m x alpha^3
+/* coarse graining by alpha (docs/theory.md §2.5): k x alpha, gamma x alpha^2, m x alpha^3
  * keep the restitution and stretch the contact time by alpha (sqrt(m/k)) */
 static void test_coarse_grain_collision(void **state)
 {
@@ -320,7 +320,7 @@ static double jkr_normal_force(double delta, void *p)
 }
 
 /* Hertz + JKR between two equal spheres: the least normal force is
- * -(3/2) pi w R* at delta_min = ((9/4) pi (w/E~) sqrt(R*))^(2/3) (PHYSICS 2.4),
+ * -(3/2) pi w R* at delta_min = ((9/4) pi (w/E~) sqrt(R*))^(2/3) (docs/theory.md §2.4),
  * found here by a numerical minimisation of the contact law's force */
 static void test_jkr_minimum(void **state)
 {
@@ -351,11 +351,11 @@ static void test_jkr_minimum(void **state)
     }
 }
 
-/* The pull-off scenario (000 Sec. 4.1): two spheres of r = 1 mm with a bridge
+/* The pull-off scenario (Uhlig 2012, Sec. 4.1): two spheres of r = 1 mm with a bridge
  * of V_B = 0.1 r^3 pulled apart at 1 mm/s.  The force along the gap is the
  * bridge law's (checked at every step), it is there at contact, vanishes
  * beyond the rupture distance, and its deviation from Willett's fit is
- * reported (000: about 18 % below on average at theta = 0).  Willett's
+ * reported (Uhlig 2012: about 18 % below on average at theta = 0).  Willett's
  * dimensionless gap is the half-separation (docs/contact-laws.md). */
 static void test_pulloff_willett(void **state)
 {
@@ -401,7 +401,7 @@ static void test_pulloff_willett(void **state)
         print_message("# pull-off, theta = %g deg: F(0) = %.6g N, rupture at s = %.6g m "
                       "(s_c = %.6g), mean deviation from Willett %.2f %%\n", thetas[a], F0,
                       last_gap_with_force, sc_rupture, 100 * dev_sum / ndev);
-        /* at the PHYSICS 2.4 table points s^ (half-separation s/2 sqrt(r/V_B)) */
+        /* at the docs/theory.md §2.4 table points s^ (half-separation s/2 sqrt(r/V_B)) */
         const double shat[] = {0.01, 0.1, 0.25, 0.5, 1.0};
         for (int k = 0; k < 5; k++) {
             double gap = 2 * shat[k] * sqrt(VB / r), W = mimas_willett_force(&b, r, gap);
@@ -410,7 +410,7 @@ static void test_pulloff_willett(void **state)
                           F / (2 * M_PI * r * 0.072), W / (2 * M_PI * r * 0.072),
                           100 * (F - W) / W);
         }
-        if (a == 0)   /* 000 Sec. 4.1 reports 18.26 % below Willett at theta = 0 */
+        if (a == 0)   /* Uhlig (2012), Sec. 4.1 reports 18.26 % below Willett at theta = 0 */
             assert_true(fabs(100 * dev_sum / ndev + 18.3) < 1.5);
         dem_free(&s);
     }
@@ -459,7 +459,7 @@ int main(void)
     omp_set_num_threads(1);   /* two particles: thread start-up would dominate */
 #endif
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_linear_000_check),
+        cmocka_unit_test(test_linear_uhlig_check),
         cmocka_unit_test(test_linear_requested_restitution),
         cmocka_unit_test(test_hertz_restitution),
         cmocka_unit_test(test_coarse_grain_collision),

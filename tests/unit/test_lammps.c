@@ -314,7 +314,7 @@ static void test_scaled_diameter_density(void **state)
 
 /* LAMMPS pair/local + property/local with anonymous columns named by
  * --contact-columns: overlap from the distance, the contact point derived
- * along the branch (docs/theory.md §2), across a periodic face too. */
+ * along the branch (docs/theory.md §1), across a periodic face too. */
 static void test_lammps_pair_local_derived_point(void **state)
 {
     (void)state;

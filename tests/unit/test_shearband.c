@@ -1,4 +1,4 @@
-/* Shear-band fits (PHYSICS 7): synthetic profiles from the 000 Table 4.8
+/* Shear-band fits (docs/theory.md §7.1): synthetic profiles from the Table 4.8 of Uhlig (2012)
  * values with noise; the reported errors must cover the true values about
  * 68 % of the time over many seeds. */
 #include <config.h>
@@ -19,11 +19,11 @@
 #include "ring_frame.h"
 #include "shearband.h"
 
-#define NR 39     /* 000: 39 radial rings from r_in to r_out */
+#define NR 39     /* Uhlig (2012): 39 radial rings from r_in to r_out */
 #define SEEDS 1000
 #define NOISE 0.03
 
-/* radial cell centres of the 000 cell */
+/* radial cell centres of Uhlig's cell */
 static void radii(double *r)
 {
     for (int i = 0; i < NR; i++)
@@ -81,7 +81,7 @@ static void check_coverage(const truth *t, int weighted, const char *what)
 static void test_coverage_dry_and_wet(void **state)
 {
     (void)state;
-    /* 000 Table 4.8: dry Rc 0.0777 m, W 0.0246 m; D = 0.4: 0.0731 m, 0.0310 m */
+    /* Uhlig (2012), Table 4.8: dry Rc 0.0777 m, W 0.0246 m; D = 0.4: 0.0731 m, 0.0310 m */
     truth dry2 = {2, {0.0777, 0.0246, 0.5, 0.5}}, wet2 = {2, {0.0731, 0.0310, 0.5, 0.5}};
     truth dry4 = {4, {0.0777, 0.0246, 0.5, 0.5}}, wet4 = {4, {0.0731, 0.0310, 0.45, 0.52}};
     check_coverage(&dry2, 1, "dry");
@@ -182,8 +182,8 @@ static void test_failed_layers_are_reported(void **state)
     assert_int_equal(f.npts, 3);
 }
 
-/* Particles of the 000 cell moving on a known band, averaged with bins on
- * the 000 grid (39 rings, here 4 layers), give back the band: Rc within
+/* Particles of Uhlig's cell moving on a known band, averaged with bins on
+ * Uhlig's grid (39 rings, here 4 layers), give back the band: Rc within
  * 1 mm and W within 5 % of sqrt(W^2 + h^2/6), the width after averaging an
  * erf of Gaussian sigma W/sqrt(2) over radial cells of width h (variance
  * h^2/12 added). */
