@@ -21,6 +21,8 @@ typedef struct reader_backend {
     int (*next)(void *state, mimas_frame *f, mimas_error *err);
     size_t (*skipped)(void *state); /* may be NULL */
     void (*close)(void *state);
+    /* the run parameters of the inputs (may be NULL: the format has none) */
+    const mimas_parameters *(*parameters)(void *state);
 } reader_backend;
 
 /* Expands '*' patterns in a list of file names (sorted matches); names

@@ -205,4 +205,4 @@ static size_t skipped(void *state)
 }
 
 const reader_backend reader_lammps = {"lammps", "LAMMPS/LIGGGHTS text dump", probe, open_state,
-                                      next, skipped, close_state};
+                                      next, skipped, close_state, NULL};

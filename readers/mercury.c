@@ -920,4 +920,4 @@ static size_t skipped(void *state)
 }
 
 const reader_backend reader_mercury = {"mercury", "MercuryDPM (.data, .fstat)", probe,
-                                       open_stream, next, skipped, close_stream};
+                                       open_stream, next, skipped, close_stream, NULL};

@@ -12,6 +12,7 @@ typedef struct native_stream {
     size_t ninputs, file;
     size_t frame;
     mimas_native *cur;
+    mimas_parameters params;   /* of all inputs (mimas_parameters_merge) */
 } native_stream;
 
 static int probe(const char *path, const char *head, size_t n)
@@ -35,16 +36,21 @@ static int open_stream(void **state, const char *const *inputs, size_t ninputs,
     s->ninputs = ninputs;
     /* open every file once up front so a bad one is reported before any work */
     for (size_t k = 0; k < ninputs; k++) {
-        mimas_native *r;
+        mimas_native *r = NULL;
         int rc = mimas_native_open(&r, inputs[k], err);
+        if (!rc && k == 0)
+            s->cur = r;
+        if (!rc)
+            rc = k == 0 ? mimas_parameters_copy(&s->params, mimas_native_parameters(r), err)
+                        : mimas_parameters_merge(&s->params, mimas_native_parameters(r), err);
+        if (k > 0)
+            mimas_native_close(r);
         if (rc) {
+            mimas_native_close(s->cur);
+            mimas_parameters_free(&s->params);
             free(s);
             return rc;
         }
-        if (k == 0)
-            s->cur = r;
-        else
-            mimas_native_close(r);
     }
     *state = s;
     return MIMAS_OK;
@@ -71,10 +77,17 @@ static int next(void *state, mimas_frame *f, mimas_error *err)
 static void close_stream(void *state)
 {
     native_stream *s = state;
-    if (s)
+    if (s) {
         mimas_native_close(s->cur);
+        mimas_parameters_free(&s->params);
+    }
     free(s);
 }
 
+static const mimas_parameters *parameters(void *state)
+{
+    return &((native_stream *)state)->params;
+}
+
 const reader_backend reader_native = {"native", "mimas native (HDF5, H5MD 1.1)", probe,
-                                      open_stream, next, NULL, close_stream};
+                                      open_stream, next, NULL, close_stream, parameters};

@@ -8,6 +8,7 @@
 
 #include "error.h"
 #include "frame.h"
+#include "parameters.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -44,6 +45,10 @@ const char *mimas_reader_format(const mimas_reader *r);
 /* Frames dropped so far because their contact data were missing
  * (only with allow_missing_contacts). */
 size_t mimas_reader_skipped(const mimas_reader *r);
+/* The run parameters the inputs record (native files: /parameters/scenario,
+ * docs/format.md); empty for formats without them.  A parameter the inputs
+ * disagree on is MIXED.  Valid until the reader is closed. */
+const mimas_parameters *mimas_reader_parameters(const mimas_reader *r);
 void mimas_reader_close(mimas_reader *r);
 
 #ifdef __cplusplus

@@ -250,6 +250,25 @@ int cli_parse_double(const char *s, double *v)
     return 0;
 }
 
+int cli_parse_range(const char *arg, double *lo, double *hi)
+{
+    const char *colon = strchr(arg, ':');
+    if (!colon)
+        return -1;
+    char a[64], b[64];
+    size_t la = (size_t)(colon - arg), lb = strlen(colon + 1);
+    if (la >= sizeof a || lb >= sizeof b)
+        return -1;
+    memcpy(a, arg, la);
+    a[la] = '\0';
+    memcpy(b, colon + 1, lb + 1);
+    *lo = -INFINITY;
+    *hi = INFINITY;
+    if ((la && cli_parse_double(a, lo)) || (lb && cli_parse_double(b, hi)))
+        return -1;
+    return *hi > *lo ? 0 : -1;
+}
+
 int cli_parse_long(const char *s, long *v)
 {
     char *end;

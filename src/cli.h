@@ -111,6 +111,9 @@ int cli_write_table(const char *path, void (*write)(FILE *fp, const void *ctx), 
 char *cli_command_line(int argc, char **argv);
 /* Parses a number; returns 0 on success. */
 int cli_parse_double(const char *s, double *v);
+/* "LO:HI", "LO:" or ":HI" (a bound left out is -+infinity) with LO < HI;
+ * returns 0 on success. */
+int cli_parse_range(const char *arg, double *lo, double *hi);
 int cli_parse_long(const char *s, long *v);
 /* --threads N (1..1024) into *threads; prints the usage error and returns 1 otherwise. */
 int cli_parse_threads(const cli_command *cmd, const char *arg, int *threads);

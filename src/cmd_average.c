@@ -265,6 +265,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
     mimas_fields_file *ff = NULL;
     if (!status && a.output)
         status = mimas_fields_open(&ff, a.output, &err);
+    if (!status && ff)
+        status = mimas_fields_parameters(ff, "scenario", mimas_reader_parameters(r), &err);
     mimas_average *one = NULL; /* the current frame alone (--per-frame) */
     if (!status && a.per_frame) {
         mimas_average_options o1 = o;

@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "cohesion.h"
 #include "contact_law.h"
 #include "error.h"
 #include "scenario.h"
@@ -134,6 +135,20 @@ double dem_wall_geometry(const dem_wall *w, const double x[3], double radius, do
                          double c[3]);
 /* Velocity of the wall surface at point c. */
 void dem_wall_velocity(const dem_wall *w, const double c[3], double v[3]);
+
+/* Energies (energy.c, docs/simulate.md "Energies"): of the free particles
+ * (glued particles belong to the walls) and of the contacts they are in. */
+typedef struct dem_energy {
+    double kinetic;      /* sum (1/2) m v^2 */
+    double rotational;   /* sum (1/2) I w^2 */
+    double elastic;      /* the springs of the touching contacts, particle and wall */
+    double bridge;       /* the work the liquid bridges would do until they rupture */
+} dem_energy;
+int dem_energies(const dem_system *s, dem_energy *e, mimas_error *err);
+/* The work of a liquid bridge from gap s to its rupture distance s_c,
+ * int_s^s_c F(s') ds' (0 for s >= s_c), by 20-point Gauss-Legendre
+ * quadrature; table is a gsl_integration_glfixed_table of 20 points or NULL. */
+double dem_bridge_energy(const mimas_bridge *b, double r_p, double s, const void *table);
 
 /* One velocity-Verlet step (integrate.c). */
 int dem_step(dem_system *s, mimas_error *err);

@@ -18,6 +18,61 @@ static double now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
+/* The names of the per-frame observables, in the order of dem_energy. */
+#define NOBS 4
+static const char *const obs_names[NOBS] = {"kinetic_energy", "rotational_energy",
+                                            "elastic_energy", "bridge_energy"};
+
+/* The current state as a frame with its energies, appended to w. */
+static int write_frame(const dem_system *s, const sim_plan *plan, mimas_frame *f,
+                       mimas_writer *w, mimas_error *err)
+{
+    dem_energy e;
+    int rc = sim_frame_fill(s, plan, f, err);
+    if (!rc)
+        rc = dem_energies(s, &e, err);
+    if (rc)
+        return rc;
+    double v[NOBS] = {e.kinetic, e.rotational, e.elastic, e.bridge};
+    mimas_observable obs[NOBS];
+    for (int k = 0; k < NOBS; k++)
+        obs[k] = (mimas_observable){obs_names[k], "J", v[k]};
+    rc = mimas_writer_observe(w, obs, NOBS, err);
+    return rc ? rc : mimas_writer_append(w, f, err);
+}
+
+/* The scenario's keys as /parameters/scenario (docs/format.md). */
+static int write_parameters(const sim_scenario *sc, mimas_writer *w, mimas_error *err)
+{
+    mimas_parameters ps;
+    mimas_parameters_init(&ps);
+    int rc = sim_scenario_parameters(sc, &ps, err);
+    if (!rc)
+        rc = mimas_writer_parameters(w, "scenario", &ps, err);
+    mimas_parameters_free(&ps);
+    return rc;
+}
+
+/* Frame k of r with its observables into w. */
+static int copy_frame(mimas_native *r, const char *path, size_t k, mimas_frame *f,
+                      mimas_writer *w, mimas_error *err)
+{
+    size_t n = mimas_native_observables(r);
+    mimas_observable obs[NOBS];
+    int rc = n > NOBS ? mimas_error_set(err, MIMAS_EDATA, "%s: more observables than mimas "
+                                        "simulate writes", path)
+                      : MIMAS_OK;
+    for (size_t q = 0; !rc && q < n; q++) {
+        obs[q].name = mimas_native_observable_name(r, q, &obs[q].unit);
+        rc = mimas_native_observable_read(r, q, k, 1, &obs[q].value, err);
+    }
+    if (!rc && n)
+        rc = mimas_writer_observe(w, obs, n, err);
+    if (!rc)
+        rc = mimas_native_read(r, k, f, err);
+    return rc ? rc : mimas_writer_append(w, f, err);
+}
+
 /* --resume: the frames of the old file up to the checkpoint go into a new
  * file (under a temporary name, renamed over the old one), which the run
  * then continues.  Frames written after the checkpoint are dropped: the run
@@ -42,8 +97,7 @@ static int reopen_output(const sim_run_options *o, int64_t last_step, mimas_writ
         mimas_frame_meta m;
         if ((rc = mimas_native_frame_meta(r, k, &m, err)) || m.step > last_step)
             break;
-        if (!(rc = mimas_native_read(r, k, &f, err)))
-            rc = mimas_writer_append(*w, &f, err);
+        rc = copy_frame(r, o->output, k, &f, *w, err);
     }
     mimas_frame_free(&f);
     mimas_native_close(r);
@@ -80,11 +134,12 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
             sim_plan_apply(&plan, &s);
             if (!(rc = dem_neighbours_build(&s, err)))
                 dem_forces(&s);
-            if (!rc && plan.output_from == 0 &&
-                !(rc = sim_frame_fill(&s, &plan, &f, err)))
-                rc = mimas_writer_append(w, &f, err);
+            if (!rc && plan.output_from == 0)
+                rc = write_frame(&s, &plan, &f, w, err);
         }
     }
+    if (!rc)
+        rc = write_parameters(sc, w, err);
     double t0 = now(), last = t0;
     int64_t first = s.step;
     while (!rc && s.step < plan.total_steps) {
@@ -92,8 +147,8 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
         if ((rc = dem_step(&s, err)))
             break;
         int frame = s.step >= plan.output_from && s.step % sc->output_every == 0;
-        if (frame && !(rc = sim_frame_fill(&s, &plan, &f, err)))
-            rc = mimas_writer_append(w, &f, err);
+        if (frame)
+            rc = write_frame(&s, &plan, &f, w, err);
         int stop = o->stop_at > 0 && s.step >= o->stop_at;
         if (!rc && ((sc->checkpoint_every == 0 && frame) ||
                     (sc->checkpoint_every > 0 && s.step % sc->checkpoint_every == 0) || stop ||

@@ -1,0 +1,67 @@
+/* The study options of the analyses that compare runs (mimas rheology,
+ * shearband, energy; docs/study.md): --study NAME or --study-values
+ * V1,V2,... make every input one run with a study value, --study-range
+ * limits the runs the trend lines use, --trends puts the trends table into a
+ * file of its own. */
+#ifndef MIMAS_CLI_STUDY_H
+#define MIMAS_CLI_STUDY_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "cli.h"
+#include "parameters.h"
+#include "study.h"
+
+/* The option table entries, in this order, for a command's cli_option list. */
+#define CLI_STUDY_OPTIONS                                                                        \
+    {"study", 0, "NAME", "compare the inputs as runs of a study of the run parameter NAME "     \
+                         "(SECTION.KEY, or KEY: liquid_content, friction, omega, ...)"},         \
+    {"study-values", 0, "V1,V2,...", "compare the inputs as runs with these study values, "      \
+                                     "one per input"},                                           \
+    {"study-range", 0, "LO:HI", "fit the trend lines over the runs with LO <= value <= HI "      \
+                                "(either may be left out; default all)"},                        \
+    {"trends", 0, "FILE", "write the trends table to FILE (default: after the runs' table, "     \
+                          "two empty lines apart)"}
+#define CLI_STUDY_NOPTIONS 4
+
+typedef struct cli_study {
+    const char *name;         /* --study */
+    const char *values;       /* --study-values */
+    double lo, hi;            /* --study-range */
+    const char *trends;       /* --trends */
+    double *x;                /* the runs' study values */
+    size_t nruns;
+} cli_study;
+
+void cli_study_init(cli_study *s);
+void cli_study_free(cli_study *s);
+/* Handles option k (0 .. CLI_STUDY_NOPTIONS - 1 of CLI_STUDY_OPTIONS);
+ * returns 0 or the exit status after the usage message. */
+int cli_study_option(const cli_command *cmd, cli_study *s, size_t k, const char *arg);
+/* 1 if a study was asked for. */
+int cli_study_on(const cli_study *s);
+/* After parsing, with the number of inputs: checks the combination (at
+ * least two runs, as many --study-values as inputs) and prepares the study
+ * values.  Returns 0 or the exit status after the message. */
+int cli_study_begin(const cli_command *cmd, cli_study *s, size_t ninputs);
+/* The study value of run k from its run parameters (with --study) or from
+ * --study-values; source names the run in messages. */
+int cli_study_take(cli_study *s, size_t k, const mimas_parameters *ps, const char *source,
+                   mimas_error *err);
+/* Says on standard error which other parameters the runs differ in (with
+ * --study; not an error: a study may vary the seed as well). */
+void cli_study_note(const cli_command *cmd, const cli_study *s,
+                    const mimas_parameters *const *ps, size_t n);
+/* The x axis label of a study's pictures. */
+const char *cli_study_label(const cli_study *s);
+/* The trend of row values y (errors e) over the runs, fitted over --study-range. */
+int cli_study_trend(const cli_study *s, const double *y, const double *e, mimas_trend *t,
+                    mimas_error *err);
+/* Writes the runs' table (write_runs) to output and the trends table to
+ * --trends or after it, without partial files. */
+int cli_study_write(const cli_study *s, const char *output,
+                    void (*write_runs)(FILE *fp, const void *ctx), const void *ctx,
+                    const mimas_trend_row *rows, size_t nrows, mimas_error *err);
+
+#endif
