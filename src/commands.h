@@ -11,5 +11,6 @@ extern const cli_command cmd_rheology;
 extern const cli_command cmd_shearband;
 extern const cli_command cmd_simulate;
 extern const cli_command cmd_voronoi;
+extern const cli_command cmd_energy;
 
 #endif

@@ -16,6 +16,7 @@ static const cli_command *const commands[] = {
     &cmd_simulate,
     &cmd_shearband,
     &cmd_rheology,
+    &cmd_energy,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 
