@@ -637,9 +637,9 @@ int mimas_writer_stage(mimas_writer *w, const mimas_frame *f, mimas_error *err)
     h5_quiet_begin(&q);
     rc = w->started ? check_same_layout(w, f, err) : start_layout(w, f, err);
     if (!rc)
-        rc = stage_particles(w, f, err);
-    if (!rc)
         rc = stage_observables(w, err);
+    if (!rc)
+        rc = stage_particles(w, f, err);
     if (!rc && w->has_contacts)
         rc = stage_flat(w, &w->contacts, &f->contacts, f, err);
     if (!rc && w->has_walls)

@@ -136,8 +136,10 @@ double dem_wall_geometry(const dem_wall *w, const double x[3], double radius, do
 /* Velocity of the wall surface at point c. */
 void dem_wall_velocity(const dem_wall *w, const double c[3], double v[3]);
 
-/* Energies (energy.c, docs/simulate.md "Energies"): of the free particles
- * (glued particles belong to the walls) and of the contacts they are in. */
+/* Energies (energy.c, docs/simulate.md "Energies"): the motion of the free
+ * particles (glued particles move with the walls) and the springs and
+ * bridges of every contact of the list (glued pairs are in it only where
+ * they interact, as in the pull-off test). */
 typedef struct dem_energy {
     double kinetic;      /* sum (1/2) m v^2 */
     double rotational;   /* sum (1/2) I w^2 */

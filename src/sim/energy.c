@@ -73,7 +73,7 @@ int dem_energies(const dem_system *s, dem_energy *e, mimas_error *err)
         for (size_t k = nl->start[i]; k < nl->start[i + 1]; k++) {
             const dem_entry *en = &nl->e[k];
             size_t j = (size_t)en->j;
-            if (!en->flags || (!free_i && s->glued[j] >= 0))
+            if (!en->flags)
                 continue;
             double d[3];
             dem_separation(s, s->x[i], s->x[j], d);
