@@ -3,6 +3,7 @@
 #include "study.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -145,34 +146,4 @@ int mimas_study_trend(const double *x, const double *y, const double *yerr, size
     free(xin);
     free(v);
     return rc;
-}
-
-static void print_value(FILE *out, double v)
-{
-    if (isnan(v))
-        fputs("\tnan", out);
-    else
-        fprintf(out, "\t%.10g", v);
-}
-
-void mimas_trend_table_write(FILE *out, const mimas_trend_row *rows, size_t n)
-{
-    fputs("table\tparameter\tlo\thi\tnruns\tA1\tA1_err\tA2\tA2_err\tchange_first\t"
-          "change_first_err\tchange_rest\tchange_rest_err\tstatus\n", out);
-    for (size_t k = 0; k < n; k++) {
-        const mimas_trend *t = &rows[k].trend;
-        fprintf(out, "%s\t%s", rows[k].table, rows[k].parameter);
-        print_value(out, rows[k].lo);
-        print_value(out, rows[k].hi);
-        fprintf(out, "\t%zu", t->line.npts);
-        print_value(out, t->line.p[1]);
-        print_value(out, t->line.err[1]);
-        print_value(out, t->line.p[0]);
-        print_value(out, t->line.err[0]);
-        print_value(out, t->change_first);
-        print_value(out, t->change_first_err);
-        print_value(out, t->change_rest);
-        print_value(out, t->change_rest_err);
-        fprintf(out, "\t%s\n", mimas_fit_status_name(t->line.status));
-    }
 }

@@ -9,7 +9,6 @@
 #define MIMAS_STUDY_H
 
 #include <stddef.h>
-#include <stdio.h>
 
 #include "error.h"
 #include "fit.h"
@@ -52,19 +51,6 @@ typedef struct mimas_trend {
  * status few_points below 3 runs); the changes use every run with a value. */
 int mimas_study_trend(const double *x, const double *y, const double *yerr, size_t n,
                       double lo, double hi, mimas_trend *t, mimas_error *err);
-
-/* ---- the trends table ---- */
-
-typedef struct mimas_trend_row {
-    const char *table, *parameter;  /* the per-run result the trend is of */
-    double lo, hi;                  /* its window (or the envelope of its ranges) */
-    mimas_trend trend;
-} mimas_trend_row;
-
-/* The header and rows of the trends table (docs/study.md):
- * table parameter lo hi nruns A1 A1_err A2 A2_err change_first
- * change_first_err change_rest change_rest_err status */
-void mimas_trend_table_write(FILE *out, const mimas_trend_row *rows, size_t n);
 
 /* ---- pictures: the runs' values against the study variable with error
  * bars, and the lines ---- */

@@ -1,4 +1,4 @@
-/* One reader interface for every input format (DESIGN.md "Command line"):
+/* One reader interface for every input format (docs/readers.md):
  * open a list of inputs, take frames one at a time, close.  The format is
  * detected from the content unless options say otherwise. */
 #ifndef MIMAS_READER_H

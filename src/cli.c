@@ -331,6 +331,14 @@ int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mima
     return w->seen++ % (w->every > 1 ? w->every : 1) == 0;
 }
 
+void cli_print_value(FILE *out, double v)
+{
+    if (isnan(v))
+        fputs("\tnan", out);
+    else
+        fprintf(out, "\t%.10g", v);
+}
+
 char *cli_command_line(int argc, char **argv)
 {
     size_t len = 16;

@@ -107,6 +107,9 @@ int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mima
 int cli_write_table(const char *path, void (*write)(FILE *fp, const void *ctx), const void *ctx,
                     mimas_error *err);
 
+/* A table cell: a tab, then v with 10 significant digits, or "nan". */
+void cli_print_value(FILE *out, double v);
+
 /* "mimas ARGS..." (malloc'd), for provenance attributes. */
 char *cli_command_line(int argc, char **argv);
 /* Parses a number; returns 0 on success. */

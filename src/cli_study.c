@@ -15,6 +15,9 @@ void cli_study_init(cli_study *s)
 
 void cli_study_free(cli_study *s)
 {
+    for (size_t k = 0; s->params && k < s->nruns; k++)
+        mimas_parameters_free(&s->params[k]);
+    free(s->params);
     free(s->x);
     cli_study_init(s);
 }
@@ -39,20 +42,24 @@ int cli_study_option(const cli_command *cmd, cli_study *s, size_t k, const char 
     return 1;
 }
 
-int cli_study_begin(const cli_command *cmd, cli_study *s, size_t ninputs)
+int cli_study_begin(const cli_command *cmd, cli_study *s, size_t ninputs, const char *one)
 {
     if (s->name && s->values)
         return cli_fail(cmd, 1, "--study and --study-values exclude each other");
     if (!cli_study_on(s)) {
         if (s->trends || isfinite(s->lo) || isfinite(s->hi))
             return cli_fail(cmd, 1, "--study-range and --trends need --study or --study-values");
+        if (one && ninputs != 1)
+            return cli_fail(cmd, 1, "needs one %s, or several with --study or --study-values; "
+                            "not %zu inputs", one, ninputs);
         return 0;
     }
     if (ninputs < 2)
         return cli_fail(cmd, 1, "a study compares two or more runs, not %zu", ninputs);
     s->nruns = ninputs;
     s->x = malloc(ninputs * sizeof *s->x);
-    if (!s->x)
+    s->params = calloc(ninputs, sizeof *s->params);
+    if (!s->x || !s->params)
         return cli_fail(cmd, 2, "out of memory");
     if (!s->values)
         return 0;
@@ -74,20 +81,26 @@ int cli_study_begin(const cli_command *cmd, cli_study *s, size_t ninputs)
 int cli_study_take(cli_study *s, size_t k, const mimas_parameters *ps, const char *source,
                    mimas_error *err)
 {
-    if (s->values)
-        return MIMAS_OK;
+    int rc = mimas_parameters_copy(&s->params[k], ps, err);
+    if (rc || s->values)
+        return rc;
     return mimas_study_value(ps, source, s->name, &s->x[k], err);
 }
 
-void cli_study_note(const cli_command *cmd, const cli_study *s,
-                    const mimas_parameters *const *ps, size_t n)
+void cli_study_note(const cli_command *cmd, const cli_study *s)
 {
-    if (!s->name)
+    const mimas_parameters **ps = malloc(s->nruns * sizeof *ps);
+    if (!s->name || !ps) {
+        free(ps);
         return;
+    }
+    for (size_t k = 0; k < s->nruns; k++)
+        ps[k] = &s->params[k];
     char list[1024];
-    mimas_study_differences(ps, n, s->name, list, sizeof list);
+    mimas_study_differences(ps, s->nruns, s->name, list, sizeof list);
     if (list[0])
         fprintf(stderr, "mimas %s: note: the runs differ also in %s\n", cmd->name, list);
+    free(ps);
 }
 
 const char *cli_study_label(const cli_study *s)
@@ -101,9 +114,28 @@ int cli_study_trend(const cli_study *s, const double *y, const double *e, mimas_
     return mimas_study_trend(s->x, y, e, s->nruns, s->lo, s->hi, t, err);
 }
 
+static void write_trends(FILE *out, const cli_trend_row *rows, size_t n)
+{
+    fputs("table\tparameter\tlo\thi\tnruns\tA1\tA1_err\tA2\tA2_err\tchange_first\t"
+          "change_first_err\tchange_rest\tchange_rest_err\tstatus\n", out);
+    for (size_t k = 0; k < n; k++) {
+        const mimas_trend *t = &rows[k].trend;
+        fprintf(out, "%s\t%s", rows[k].table, rows[k].parameter);
+        cli_print_value(out, rows[k].lo);
+        cli_print_value(out, rows[k].hi);
+        fprintf(out, "\t%zu", t->line.npts);
+        const double v[8] = {t->line.p[1], t->line.err[1], t->line.p[0], t->line.err[0],
+                             t->change_first, t->change_first_err, t->change_rest,
+                             t->change_rest_err};
+        for (int q = 0; q < 8; q++)
+            cli_print_value(out, v[q]);
+        fprintf(out, "\t%s\n", mimas_fit_status_name(t->line.status));
+    }
+}
+
 int cli_study_write(const cli_study *s, const char *output,
                     void (*write_runs)(FILE *fp, const void *ctx), const void *ctx,
-                    const mimas_trend_row *rows, size_t nrows, mimas_error *err)
+                    const cli_trend_row *rows, size_t nrows, mimas_error *err)
 {
     cli_output runs = {0}, trends = {0};
     int rc = cli_output_open(&runs, output, err);
@@ -114,7 +146,7 @@ int cli_study_write(const cli_study *s, const char *output,
         FILE *fp = s->trends ? trends.fp : runs.fp;
         if (!s->trends)
             fputs("\n\n", fp);
-        mimas_trend_table_write(fp, rows, nrows);
+        write_trends(fp, rows, nrows);
     }
     int c1 = s->trends ? cli_output_close(&trends, !rc, err) : MIMAS_OK;
     int c2 = cli_output_close(&runs, !rc && !c1, err);

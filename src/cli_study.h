@@ -32,6 +32,7 @@ typedef struct cli_study {
     const char *trends;       /* --trends */
     double *x;                /* the runs' study values */
     size_t nruns;
+    mimas_parameters *params; /* the runs' parameters (cli_study_take) */
 } cli_study;
 
 void cli_study_init(cli_study *s);
@@ -42,26 +43,37 @@ int cli_study_option(const cli_command *cmd, cli_study *s, size_t k, const char 
 /* 1 if a study was asked for. */
 int cli_study_on(const cli_study *s);
 /* After parsing, with the number of inputs: checks the combination (at
- * least two runs, as many --study-values as inputs) and prepares the study
- * values.  Returns 0 or the exit status after the message. */
-int cli_study_begin(const cli_command *cmd, cli_study *s, size_t ninputs);
+ * least two runs, as many --study-values as inputs; without a study exactly
+ * one input when one is not NULL, then named by it in the message) and
+ * prepares the study values.  Returns 0 or the exit status after the
+ * message. */
+int cli_study_begin(const cli_command *cmd, cli_study *s, size_t ninputs, const char *one);
 /* The study value of run k from its run parameters (with --study) or from
- * --study-values; source names the run in messages. */
+ * --study-values; source names the run in messages.  The parameters are
+ * kept for cli_study_note. */
 int cli_study_take(cli_study *s, size_t k, const mimas_parameters *ps, const char *source,
                    mimas_error *err);
 /* Says on standard error which other parameters the runs differ in (with
  * --study; not an error: a study may vary the seed as well). */
-void cli_study_note(const cli_command *cmd, const cli_study *s,
-                    const mimas_parameters *const *ps, size_t n);
+void cli_study_note(const cli_command *cmd, const cli_study *s);
 /* The x axis label of a study's pictures. */
 const char *cli_study_label(const cli_study *s);
 /* The trend of row values y (errors e) over the runs, fitted over --study-range. */
 int cli_study_trend(const cli_study *s, const double *y, const double *e, mimas_trend *t,
                     mimas_error *err);
-/* Writes the runs' table (write_runs) to output and the trends table to
+/* A row of the trends table: a per-run result and its trend. */
+typedef struct cli_trend_row {
+    const char *table, *parameter;  /* the per-run result the trend is of */
+    double lo, hi;                  /* its window (or the envelope of its ranges) */
+    mimas_trend trend;
+} cli_trend_row;
+
+/* Writes the runs' table (write_runs) to output and the trends table
+ * (docs/study.md: table parameter lo hi nruns A1 A1_err A2 A2_err
+ * change_first change_first_err change_rest change_rest_err status) to
  * --trends or after it, without partial files. */
 int cli_study_write(const cli_study *s, const char *output,
                     void (*write_runs)(FILE *fp, const void *ctx), const void *ctx,
-                    const mimas_trend_row *rows, size_t nrows, mimas_error *err);
+                    const cli_trend_row *rows, size_t nrows, mimas_error *err);
 
 #endif

@@ -1,4 +1,4 @@
-/* mimas average: continuum fields on a grid from any input (PHYSICS 6). */
+/* mimas average: continuum fields on a grid from any input (docs/theory.md §6). */
 #include <config.h>
 
 #include <errno.h>
@@ -346,12 +346,14 @@ const cli_command cmd_average = {
     "continuum fields (density, velocity, stress, fabric, ...) on a grid",
     "[options] INPUT... --grid SPEC --weight SPEC",
     "Coarse-grains particles and contacts onto a Cartesian or cylindrical grid\n"
-    "(PHYSICS 6): number and mass density, solid fraction, velocity, kinetic,\n"
-    "contact and total stress (compression positive), pressure, shear stress,\n"
-    "stress ratio, granular temperature, coordination number, fabric and wall\n"
-    "force density (docs/fields.md).  Time averages are taken of the primary\n"
+    "(docs/theory.md §6): number and mass density, solid fraction, velocity,\n"
+    "kinetic, contact and total stress (compression positive), pressure, shear\n"
+    "stress, stress ratio, granular temperature, coordination number, fabric and\n"
+    "wall force density (docs/fields.md).  Time averages are taken of the primary\n"
     "sums; --errors adds the standard error over frames.  Writes a TSV table,\n"
-    "one row per cell: the gridded cell-centre coordinates, then the fields.",
+    "one row per cell: the gridded cell-centre coordinates, then the fields.  The\n"
+    "run parameters of the input (mimas simulate's scenario) go into the field\n"
+    "file of -o.",
     options,
     sizeof options / sizeof options[0],
     1,

@@ -77,14 +77,6 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     return cli_study_option(a->cmd, &a->study, opt - O_STUDY, arg);
 }
 
-static void print_value(FILE *out, double v)
-{
-    if (isnan(v))
-        fputs("\tnan", out);
-    else
-        fprintf(out, "\t%.10g", v);
-}
-
 #define HEADER "energy\tmean\tstd\tcv_percent\tframes\tfrom\tto\n"
 
 static void write_rows(FILE *out, const mimas_energy *e, const char *prefix)
@@ -94,12 +86,12 @@ static void write_rows(FILE *out, const mimas_energy *e, const char *prefix)
         if (!s->present)
             continue;
         fprintf(out, "%s%s", prefix, mimas_energy_name(q));
-        print_value(out, s->mean);
-        print_value(out, s->sd);
-        print_value(out, 100 * s->cv);
+        cli_print_value(out, s->mean);
+        cli_print_value(out, s->sd);
+        cli_print_value(out, 100 * s->cv);
         fprintf(out, "\t%zu", s->n);
-        print_value(out, e->from);
-        print_value(out, e->to);
+        cli_print_value(out, e->from);
+        cli_print_value(out, e->to);
         fputc('\n', out);
     }
 }
@@ -115,7 +107,7 @@ static void write_table(FILE *out, const void *ctx)
 typedef struct energy_study {
     const cli_study *study;
     mimas_energy *runs;
-    mimas_trend_row trends[2 * MIMAS_ENERGY_N];
+    cli_trend_row trends[2 * MIMAS_ENERGY_N];
     size_t ntrends;
 } energy_study;
 
@@ -133,6 +125,7 @@ static void write_runs(FILE *out, const void *ctx)
 /* The parameters of a run: a native file's, none for a log. */
 static int run_parameters(const char *path, mimas_parameters *ps, mimas_error *err)
 {
+    mimas_parameters_clear(ps);
     FILE *fp = fopen(path, "rb");
     char sig[8] = {0};
     size_t n = fp ? fread(sig, 1, 8, fp) : 0;
@@ -160,7 +153,7 @@ static int energy_trends(energy_study *st, double *y, mimas_error *err)
         for (size_t k = 0; k < n; k++)
             all &= st->runs[k].q[q].present;
         for (int w = 0; all && !rc && w < 2; w++) {
-            mimas_trend_row *t = &st->trends[st->ntrends++];
+            cli_trend_row *t = &st->trends[st->ntrends++];
             double *v = y + (size_t)(2 * q + w) * n;
             t->table = mimas_energy_name(q);
             t->parameter = what[w];
@@ -187,7 +180,7 @@ static int plot_study(const energy_args *a, const energy_study *st, const double
     static const char *const title[2] = {"mean total energy", "coefficient of variation"};
     static const char *const unit[2] = {"E_total (J)", "sd/mean (%)"};
     for (size_t k = 0; k < st->ntrends; k++) {
-        const mimas_trend_row *t = &st->trends[k];
+        const cli_trend_row *t = &st->trends[k];
         if (strcmp(t->table, "total"))
             continue;
         int w = strcmp(t->parameter, "mean") != 0;
@@ -210,32 +203,27 @@ static int run_study(energy_args *a, char **inputs, mimas_error *err)
     cli_study *s = &a->study;
     size_t n = s->nruns;
     energy_study st = {s, calloc(n, sizeof *st.runs), {{0}}, 0};
-    mimas_parameters *params = calloc(n, sizeof *params);
-    const mimas_parameters **pp = calloc(n, sizeof *pp);
     double *y = malloc(2 * MIMAS_ENERGY_N * n * sizeof *y);
-    int status = st.runs && params && pp && y ? MIMAS_OK
-                                              : mimas_error_set(err, MIMAS_EIO, "out of memory");
+    mimas_parameters ps;
+    mimas_parameters_init(&ps);
+    int status = st.runs && y ? MIMAS_OK : mimas_error_set(err, MIMAS_EIO, "out of memory");
     for (size_t k = 0; !status && k < n; k++) {
-        pp[k] = &params[k];
-        status = run_parameters(inputs[k], &params[k], err);
+        status = run_parameters(inputs[k], &ps, err);
         if (!status)
-            status = cli_study_take(s, k, &params[k], inputs[k], err);
+            status = cli_study_take(s, k, &ps, inputs[k], err);
         if (!status)
             status = mimas_energy_of(inputs[k], &a->o, &st.runs[k], err);
     }
+    mimas_parameters_free(&ps);
     if (!status) {
-        cli_study_note(a->cmd, s, pp, n);
+        cli_study_note(a->cmd, s);
         status = energy_trends(&st, y, err);
     }
     if (!status && a->plot)
         status = plot_study(a, &st, y, err);
     if (!status)
         status = cli_study_write(s, a->output, write_runs, &st, st.trends, st.ntrends, err);
-    for (size_t k = 0; params && k < n; k++)
-        mimas_parameters_free(&params[k]);
     free(st.runs);
-    free(params);
-    free(pp);
     free(y);
     return status;
 }
@@ -250,10 +238,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     int first;
     int rc = cli_parse(cmd, argc, argv, on_option, &a, NULL, &first);
     if (!rc)
-        rc = cli_study_begin(cmd, &a.study, (size_t)(argc - first));
-    if (!rc && !cli_study_on(&a.study) && argc - first != 1)
-        rc = cli_fail(cmd, 1, "needs one run (RUN.h5 or a log), or several with --study or "
-                      "--study-values; not %d inputs", argc - first);
+        rc = cli_study_begin(cmd, &a.study, (size_t)(argc - first), "run (RUN.h5 or a log)");
     if (!rc && a.plot && !cli_study_on(&a.study))
         rc = cli_fail(cmd, 1, "--plot draws a study: it needs --study or --study-values");
     if (rc) {

@@ -83,14 +83,6 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     return cli_study_option(a->cmd, &a->study, opt - O_STUDY, arg);
 }
 
-static void print_value(FILE *out, double v)
-{
-    if (isnan(v))
-        fputs("\tnan", out);
-    else
-        fprintf(out, "\t%.10g", v);
-}
-
 #define HEADER "table\tparameter\tvalue\terror\tnpts\tlo\thi\tstatus\n"
 
 /* The rows of one analysis, each after prefix (the study column). */
@@ -99,11 +91,11 @@ static void write_rows(FILE *out, const mimas_rheology *r, const char *prefix)
     for (size_t k = 0; k < r->nrows; k++) {
         const mimas_rheology_row *w = &r->rows[k];
         fprintf(out, "%s%s\t%s", prefix, w->table, w->parameter);
-        print_value(out, w->value);
-        print_value(out, w->error);
+        cli_print_value(out, w->value);
+        cli_print_value(out, w->error);
         fprintf(out, "\t%zu", w->npts);
-        print_value(out, w->lo);
-        print_value(out, w->hi);
+        cli_print_value(out, w->lo);
+        cli_print_value(out, w->hi);
         fprintf(out, "\t%s\n", mimas_fit_status_name(w->status));
     }
 }
@@ -135,7 +127,7 @@ static int run_one(const rheology_args *a, const char *input, mimas_error *err)
 typedef struct study_result {
     const cli_study *study;
     mimas_rheology **runs;
-    mimas_trend_row *trends;     /* one per row of an analysis */
+    cli_trend_row *trends;     /* one per row of an analysis */
     size_t nrows;
 } study_result;
 
@@ -158,7 +150,7 @@ static int trends_of(study_result *res, mimas_error *err)
     res->trends = calloc(res->nrows, sizeof *res->trends);
     int rc = y && res->trends ? MIMAS_OK : mimas_error_set(err, MIMAS_EIO, "out of memory");
     for (size_t j = 0; !rc && j < res->nrows; j++) {
-        mimas_trend_row *t = &res->trends[j];
+        cli_trend_row *t = &res->trends[j];
         const mimas_rheology_row *first = &res->runs[0]->rows[j];
         t->table = first->table;
         t->parameter = first->parameter;
@@ -239,24 +231,18 @@ static int run_study(rheology_args *a, char **inputs, mimas_error *err)
     cli_study *st = &a->study;
     size_t n = st->nruns;
     study_result res = {st, calloc(n, sizeof *res.runs), NULL, 0};
-    mimas_parameters *params = calloc(n, sizeof *params);
-    const mimas_parameters **pp = calloc(n, sizeof *pp);
-    int status = res.runs && params && pp ? MIMAS_OK
-                                          : mimas_error_set(err, MIMAS_EIO, "out of memory");
+    int status = res.runs ? MIMAS_OK : mimas_error_set(err, MIMAS_EIO, "out of memory");
     for (size_t k = 0; !status && k < n; k++) {
         mimas_fieldset *fs = NULL;
         status = mimas_fieldset_open(&fs, inputs[k], err);
         if (!status)
-            status = mimas_parameters_copy(&params[k], mimas_fieldset_parameters(fs), err);
-        pp[k] = &params[k];
-        if (!status)
-            status = cli_study_take(st, k, &params[k], inputs[k], err);
+            status = cli_study_take(st, k, mimas_fieldset_parameters(fs), inputs[k], err);
         if (!status)
             status = mimas_rheology_analyse(fs, &a->o, &res.runs[k], err);
         mimas_fieldset_close(fs);
     }
     if (!status) {
-        cli_study_note(a->cmd, st, pp, n);
+        cli_study_note(a->cmd, st);
         res.nrows = res.runs[0]->nrows;
         status = trends_of(&res, err);
     }
@@ -266,12 +252,8 @@ static int run_study(rheology_args *a, char **inputs, mimas_error *err)
         status = cli_study_write(st, a->output, write_runs, &res, res.trends, res.nrows, err);
     for (size_t k = 0; res.runs && k < n; k++)
         mimas_rheology_free(res.runs[k]);
-    for (size_t k = 0; params && k < n; k++)
-        mimas_parameters_free(&params[k]);
     free(res.runs);
     free(res.trends);
-    free(params);
-    free(pp);
     return status;
 }
 
@@ -285,10 +267,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
     int first;
     int rc = cli_parse(cmd, argc, argv, on_option, &a, NULL, &first);
     if (!rc)
-        rc = cli_study_begin(cmd, &a.study, (size_t)(argc - first));
-    if (!rc && !cli_study_on(&a.study) && argc - first != 1)
-        rc = cli_fail(cmd, 1, "needs one field file (mimas average -o FIELDS.h5), or several "
-                      "with --study or --study-values; not %d inputs", argc - first);
+        rc = cli_study_begin(cmd, &a.study, (size_t)(argc - first),
+                             "field file (mimas average -o FIELDS.h5)");
     if (rc) {
         cli_study_free(&a.study);
         return rc < 0 ? 0 : rc;

@@ -154,14 +154,6 @@ static int average_input(const band_args *a, const cli_inputs *in, mimas_reader 
     return status;
 }
 
-static void print_value(FILE *out, double v)
-{
-    if (isnan(v))
-        fputs("\tnan", out);
-    else
-        fprintf(out, "\t%.10g", v);
-}
-
 typedef struct band_table {
     const band_args *a;
     const mimas_band *b;
@@ -184,17 +176,17 @@ static void write_rows(FILE *out, const band_args *a, const mimas_band *b, const
         const mimas_fit *f = &b->layers[k].fit;
         fprintf(out, "%s%.10g", prefix, b->layers[k].z);
         for (int q = MIMAS_BAND_RC; q <= MIMAS_BAND_W; q++) {
-            print_value(out, f->p[q]);
-            print_value(out, f->err[q]);
+            cli_print_value(out, f->p[q]);
+            cli_print_value(out, f->err[q]);
         }
-        print_value(out, f->chi2);
+        cli_print_value(out, f->chi2);
         fprintf(out, "\t%zu", f->npts);
         for (int q = MIMAS_BAND_A; b->model == 4 && q <= MIMAS_BAND_B; q++) {
-            print_value(out, f->p[q]);
-            print_value(out, f->err[q]);
+            cli_print_value(out, f->p[q]);
+            cli_print_value(out, f->err[q]);
         }
         if (a->fenistein)
-            print_value(out, mimas_band_fenistein_rc(a->rs, a->h));
+            cli_print_value(out, mimas_band_fenistein_rc(a->rs, a->h));
         fprintf(out, "\t%s\n", mimas_fit_status_name(f->status));
     }
 }
@@ -230,7 +222,7 @@ typedef struct band_study {
     const band_args *a;
     mimas_band **runs;
     size_t *layer;           /* the layer of each run the trends take (nlayers: none) */
-    mimas_trend_row trends[2];
+    cli_trend_row trends[2];
 } band_study;
 
 static void write_runs(FILE *out, const void *ctx)
@@ -267,7 +259,7 @@ static int band_trends(band_study *st, double *y, double *e, mimas_error *err)
     int rc = MIMAS_OK;
     static const char *const names[2] = {"Rc", "W"};
     for (int q = 0; !rc && q < 2; q++) {
-        mimas_trend_row *t = &st->trends[q];
+        cli_trend_row *t = &st->trends[q];
         t->table = "layer";
         t->parameter = names[q];
         t->lo = INFINITY;
@@ -296,20 +288,14 @@ static int run_study(band_args *a, cli_inputs *in, char **inputs, mimas_error *e
     cli_study *s = &a->study;
     size_t n = s->nruns;
     band_study st = {a, calloc(n, sizeof *st.runs), calloc(n, sizeof *st.layer), {{0}}};
-    mimas_parameters *params = calloc(n, sizeof *params);
-    const mimas_parameters **pp = calloc(n, sizeof *pp);
     double *y = malloc(4 * n * sizeof *y);
-    int status = st.runs && st.layer && params && pp && y
-                     ? MIMAS_OK
-                     : mimas_error_set(err, MIMAS_EIO, "out of memory");
+    int status = st.runs && st.layer && y ? MIMAS_OK
+                                          : mimas_error_set(err, MIMAS_EIO, "out of memory");
     for (size_t k = 0; !status && k < n; k++) {
         mimas_fieldset *fs = NULL;
         status = input_fields(a, in, &inputs[k], 1, &fs, err);
-        pp[k] = &params[k];
         if (!status)
-            status = mimas_parameters_copy(&params[k], mimas_fieldset_parameters(fs), err);
-        if (!status)
-            status = cli_study_take(s, k, &params[k], inputs[k], err);
+            status = cli_study_take(s, k, mimas_fieldset_parameters(fs), inputs[k], err);
         if (!status)
             status = mimas_band_analyse(fs, &a->o, &st.runs[k], err);
         if (!status)
@@ -317,7 +303,7 @@ static int run_study(band_args *a, cli_inputs *in, char **inputs, mimas_error *e
         mimas_fieldset_close(fs);
     }
     if (!status) {
-        cli_study_note(a->cmd, s, pp, n);
+        cli_study_note(a->cmd, s);
         status = band_trends(&st, y, y + 2 * n, err);
     }
     if (!status && a->plot) {
@@ -338,12 +324,8 @@ static int run_study(band_args *a, cli_inputs *in, char **inputs, mimas_error *e
         status = cli_study_write(s, a->output, write_runs, &st, st.trends, 2, err);
     for (size_t k = 0; st.runs && k < n; k++)
         mimas_band_free(st.runs[k]);
-    for (size_t k = 0; params && k < n; k++)
-        mimas_parameters_free(&params[k]);
     free(st.runs);
     free(st.layer);
-    free(params);
-    free(pp);
     free(y);
     return status;
 }
@@ -384,7 +366,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
         rc = cli_fail(cmd, 1, "--min-points must exceed the %d parameters of the model",
                       a.o.model);
     if (!rc)
-        rc = cli_study_begin(cmd, &a.study, (size_t)(argc - first));
+        rc = cli_study_begin(cmd, &a.study, (size_t)(argc - first), NULL);
     if (!rc && a.has_layer && !cli_study_on(&a.study))
         rc = cli_fail(cmd, 1, "--layer needs --study or --study-values");
     mimas_error err;

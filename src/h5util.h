@@ -43,6 +43,11 @@ hid_t h5_create_growing(hid_t loc, const char *name, hid_t type, int rank, int n
                         const hsize_t *dims, const hsize_t *chunk, const void *fill,
                         int deflate);
 
+/* Opens the group at path, or creates it (with the groups above it) so that
+ * its members and attributes remember the order they were created in (they
+ * read back in written order). */
+hid_t h5_group_ordered(hid_t loc, const char *path);
+
 /* Current extent of dimension 0 (or 0 on error). */
 hsize_t h5_extent0(hid_t dset);
 

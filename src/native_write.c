@@ -164,16 +164,7 @@ size_t mimas_writer_frames(const mimas_writer *w)
  * columns read back in the order they were written. */
 static hid_t make_group(hid_t file, const char *path)
 {
-    if (H5Lexists(file, path, H5P_DEFAULT) > 0)
-        return H5Gopen2(file, path, H5P_DEFAULT);
-    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
-    H5Pset_create_intermediate_group(lcpl, 1);
-    hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
-    H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
-    hid_t g = H5Gcreate2(file, path, lcpl, gcpl, H5P_DEFAULT);
-    H5Pclose(gcpl);
-    H5Pclose(lcpl);
-    return g;
+    return h5_group_ordered(file, path);
 }
 
 /* A time-dependent H5MD element {step, time, value}: value grows along its

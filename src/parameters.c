@@ -187,14 +187,7 @@ int parameters_write_h5(hid_t loc, const char *group, const mimas_parameters *ps
     char path[256];
     if (snprintf(path, sizeof path, "/parameters/%s", group) >= (int)sizeof path)
         return -1;
-    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
-    H5Pset_create_intermediate_group(lcpl, 1);
-    /* attributes read back in the order they were written */
-    hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
-    H5Pset_attr_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
-    hid_t g = H5Gcreate2(loc, path, lcpl, gcpl, H5P_DEFAULT);
-    H5Pclose(gcpl);
-    H5Pclose(lcpl);
+    hid_t g = h5_group_ordered(loc, path);   /* attributes read back in written order */
     if (g < 0)
         return -1;
     int rc = 0;

@@ -1,6 +1,6 @@
 /* The state of a DEM simulation (mimas simulate): particles, walls, the
  * contact laws of every type pair and the Verlet neighbour list with the
- * contact history.  PHYSICS.md sections 2 and 3. */
+ * contact history.  docs/theory.md §2 and §3. */
 #ifndef MIMAS_SIM_DEM_H
 #define MIMAS_SIM_DEM_H
 
@@ -47,7 +47,7 @@ enum { DEM_TOUCH = 1, DEM_BRIDGE = 2 };
 typedef struct dem_entry {
     int32_t j;
     int32_t flags;           /* DEM_TOUCH while overlapping, DEM_BRIDGE while a bridge exists */
-    double xi[3];            /* tangential spring of i relative to j (PHYSICS 2.3) */
+    double xi[3];            /* tangential spring of i relative to j (docs/theory.md §2.3) */
 } dem_entry;                 /* 32 bytes: two per cache line */
 
 /* What one entry contributes to one of its particles: force and torque. */
@@ -59,7 +59,7 @@ typedef struct dem_nlist {
     size_t n;                /* particles the list was built for */
     size_t *start;           /* n + 1: entries of i are start[i] .. start[i+1]-1 */
     dem_entry *e;
-    double *bv;              /* per entry: V_B of its liquid bridge (PHYSICS 2.4), 0 without */
+    double *bv;              /* per entry: V_B of its liquid bridge (docs/theory.md §2.4), 0 without */
     size_t ne, cap;
     size_t *tstart;          /* transposed: entries where particle j is the second one */
     size_t *tk;              /* entry of each transposed slot */
@@ -75,7 +75,7 @@ typedef struct dem_system {
     int64_t *id;
     int32_t *type;
     double *radius, *mass, *inertia;   /* inertia = (2/5) m R^2 */
-    double *liquid;                    /* liquid volume V_L carried (PHYSICS 2.4) */
+    double *liquid;                    /* liquid volume V_L carried (docs/theory.md §2.4) */
     double (*x)[3], (*v)[3], (*w)[3], (*f)[3], (*t)[3];
     double (*x_ref)[3];                /* positions when the list was built */
     int32_t (*image)[3];

@@ -40,7 +40,7 @@ static const key_desc keys[] = {
      "seed of the random numbers (sizes, insertion, velocities)", S_ALL},
     {"run", "dt", K_REAL, SC(dt), 0, BIG | R_MIN_OPEN, NULL, "s", "time step", S_ALL},
     {"run", "dt_guard", K_BOOL, SC(dt_guard), 0, 1, 0, NULL, "",
-     "refuse dt > t_c/50 of the stiffest linear pair (PHYSICS 3)", S_ALL},
+     "refuse dt > t_c/50 of the stiffest linear pair (docs/theory.md §3)", S_ALL},
     {"run", "skin", K_REAL, SC(skin), 0, BIG | R_MIN_OPEN, NULL, "m",
      "Verlet-list skin; lists are rebuilt when a particle moved more than skin/2", S_ALL},
     {"run", "gravity_x", K_REAL, SC(gravity[0]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, x", S_ALL},
@@ -59,15 +59,15 @@ static const key_desc keys[] = {
     {"particles", "density", K_REAL, SC(density), 0, BIG | R_MIN_OPEN, NULL, "kg m-3",
      "particle material density", S_ALL},
     {"particles", "liquid_content", K_REAL, SC(liquid_content), 0, 0.5, 0, NULL, "",
-     "liquid mass per particle mass D; > 0 switches liquid bridges on (PHYSICS 2.4)", S_ALL},
+     "liquid mass per particle mass D; > 0 switches liquid bridges on (docs/theory.md §2.4)", S_ALL},
     {"particles", "liquid_density", K_REAL, SC(liquid_density), 0, BIG | R_MIN_OPEN, NULL,
      "kg m-3", "density of the liquid", S_ALL},
     {"particles", "coarse_grain", K_REAL, SC(coarse_grain), 1, 1000, 0, NULL, "",
-     "coarse-grain factor alpha: radii x alpha, parameters scaled (PHYSICS 2.5)", S_ALL},
+     "coarse-grain factor alpha: radii x alpha, parameters scaled (docs/theory.md §2.5)", S_ALL},
     {"particles", "rotation", K_BOOL, SC(rotation), 0, 1, 0, NULL, "",
      "integrate the rotation of the particles (no: angular velocities stay 0)", S_ALL},
     {"contact", "model", K_CHOICE, CP(model), 0, 0, 0, "linear|hertz", "",
-     "normal and tangential law: linear spring-dashpot or Hertz-Mindlin (PHYSICS 2.1, 2.2)", S_ALL},
+     "normal and tangential law: linear spring-dashpot or Hertz-Mindlin (docs/theory.md §2.1, §2.2)", S_ALL},
     {"contact", "stiffness_normal", K_REAL, CP(k_n), 0, BIG, NULL, "N m-1", "k_n (linear)", S_ALL},
     {"contact", "stiffness_tangential", K_REAL, CP(k_t), 0, BIG, NULL, "N m-1",
      "k_t of the tangential history spring (linear)", S_ALL},
@@ -78,16 +78,16 @@ static const key_desc keys[] = {
     {"contact", "restitution", K_REAL, CP(restitution), 0, 1, 0, NULL, "",
      "coefficient of restitution e; 0: use damping_normal (linear); Hertz needs e > 0", S_ALL},
     {"contact", "normal_clip", K_BOOL, CP(normal_clip), 0, 1, 0, NULL, "",
-     "the normal force is never attractive: max(0, k delta - gamma v_n) (PHYSICS 2.1); with "
-     "it, restitution is reached at the end of the repulsion (004 eq. 3.13-3.14)", S_ALL},
+     "the normal force is never attractive: max(0, k delta - gamma v_n) (docs/theory.md §2.1); with "
+     "it, restitution is reached at the end of the repulsion (Strauß 2005, eq. 3.13-3.14)", S_ALL},
     {"contact", "youngs_modulus", K_REAL, CP(youngs_modulus), 0, BIG, NULL, "Pa",
      "E (Hertz, JKR)", S_ALL},
     {"contact", "poisson", K_REAL, CP(poisson), 0, 0.5, 0, NULL, "", "Poisson ratio nu", S_ALL},
     {"contact", "friction", K_REAL, CP(friction), 0, BIG, NULL, "", "Coulomb friction mu", S_ALL},
     {"contact", "rolling_friction", K_REAL, CP(rolling_friction), 0, BIG, NULL, "m",
-     "rolling friction length mu_r (PHYSICS 2.3)", S_ALL},
+     "rolling friction length mu_r (docs/theory.md §2.3)", S_ALL},
     {"contact", "cohesion_energy", K_REAL, CP(cohesion_energy), 0, BIG, NULL, "J m-2",
-     "JKR-type cohesion: work of adhesion w = twice the surface energy (002 eq. 2.4, PHYSICS 2.4); needs youngs_modulus", S_ALL},
+     "JKR-type cohesion: work of adhesion w = twice the surface energy (Bierwisch 2009, eq. 2.4; docs/theory.md §2.4); needs youngs_modulus", S_ALL},
     {"contact", "surface_tension", K_REAL, CP(surface_tension), 0, BIG, NULL, "N m-1",
      "surface tension of the liquid bridges", S_ALL},
     {"contact", "contact_angle", K_REAL, CP(contact_angle), 0, 90, 0, NULL, "deg",
@@ -142,7 +142,7 @@ int sim_scenario_type(const char *name)
 
 static void contact_defaults(sim_contact_params *c)
 {
-    /* the ring shear cell of 000 (PHYSICS 7, 000 Table 4.2) */
+    /* the ring shear cell of Uhlig (2012, Table 4.2) */
     *c = (sim_contact_params){.model = SIM_LINEAR, .k_n = 110, .k_t = 12, .gamma_n = 2e-3,
                               .gamma_t = 0.5e-3, .restitution = 0, .normal_clip = 1,
                               .youngs_modulus = 0,
@@ -172,7 +172,7 @@ void sim_scenario_defaults(sim_scenario *s, int type)
     for (int a = 0; a < SIM_MAX_TYPES; a++)
         for (int b = 0; b < SIM_MAX_TYPES; b++)
             s->contact[a][b] = s->contact_all;
-    /* the split-bottom cell of 000 (PHYSICS 7) */
+    /* the split-bottom cell of Uhlig (2012, Sec. 4.2) */
     s->r_in = 0.0147;
     s->r_split = 0.085;
     s->r_out = 0.11;

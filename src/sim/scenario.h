@@ -17,13 +17,13 @@ enum { SIM_LINEAR = 0, SIM_HERTZ = 1 };
 /* Material types: 0 stands for the walls, 1.. for particle types. */
 #define SIM_MAX_TYPES 4
 
-/* Contact-law parameters of one pair of types (PHYSICS 2). */
+/* Contact-law parameters of one pair of types (docs/theory.md §2). */
 typedef struct sim_contact_params {
     int model;                 /* SIM_LINEAR or SIM_HERTZ */
     double k_n, k_t;           /* linear stiffnesses, N/m */
     double gamma_n, gamma_t;   /* linear damping, N s/m */
     double restitution;        /* > 0: gamma_n derived from it (linear) / Hertz damping */
-    int normal_clip;           /* the normal force is never attractive (PHYSICS 2.1) */
+    int normal_clip;           /* the normal force is never attractive (docs/theory.md §2.1) */
     double youngs_modulus, poisson;
     double friction;           /* Coulomb mu */
     double rolling_friction;   /* mu_r, a length (m) */

@@ -1,4 +1,4 @@
-/* Rheology (PHYSICS 7, 000 Sec. 4.2): synthetic tau-p, mu(I) and eta data
+/* Rheology (docs/theory.md §7.2; Uhlig 2012, Sec. 4.2): synthetic tau-p, mu(I) and eta data
  * give back their parameters; the analysis of a field file selects its
  * cells and follows the definition. */
 #include <config.h>
@@ -53,7 +53,7 @@ static void ols(const double *x, const double *y, size_t n, double *p, double *e
 static void test_yield_line(void **state)
 {
     (void)state;
-    /* 000 Table 4.5, D = 0.05: zeta = 0.17, tau0 = 14 Pa */
+    /* Uhlig (2012), Table 4.5, D = 0.05: zeta = 0.17, tau0 = 14 Pa */
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     double p[NCELLS], tau[NCELLS], q[2], e[2];
     size_t hit[2] = {0, 0};
