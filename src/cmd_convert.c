@@ -57,6 +57,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
     mimas_frame f;
     mimas_frame_init(&f);
     rc = mimas_writer_open(&w, a.output, &o, &err);
+    if (!rc)
+        rc = mimas_writer_parameters(w, "scenario", mimas_reader_parameters(r), &err);
     cli_progress prog;
     cli_progress_start(&prog, &in);
     while (!rc && (rc = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
@@ -90,7 +92,8 @@ const cli_command cmd_convert = {
     "Reads the inputs frame by frame (with their contact and wall-contact files)\n"
     "and writes them to OUT.h5 in the native format (docs/format.md).  The file\n"
     "is written under a temporary name and renamed when complete, so a failed\n"
-    "conversion leaves nothing behind.",
+    "conversion leaves nothing behind.  The run parameters of native inputs are\n"
+    "kept (their per-frame observables are not).",
     options,
     sizeof options / sizeof options[0],
     1,
