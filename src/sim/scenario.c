@@ -78,8 +78,8 @@ static const key_desc keys[] = {
     {"contact", "restitution", K_REAL, CP(restitution), 0, 1, 0, NULL, "",
      "coefficient of restitution e; 0: use damping_normal (linear); Hertz needs e > 0", S_ALL},
     {"contact", "normal_clip", K_BOOL, CP(normal_clip), 0, 1, 0, NULL, "",
-     "the normal force is never attractive: max(0, k delta - gamma v_n) (docs/theory.md §2.1); with "
-     "it, restitution is reached at the end of the repulsion (Strauß 2005, eq. 3.13-3.14)", S_ALL},
+     "never attractive: max(0, k delta - gamma v_n) (docs/theory.md §2.1); e then holds at the "
+     "end of the repulsion (Strauß 2005, eq. 3.13-3.14)", S_ALL},
     {"contact", "youngs_modulus", K_REAL, CP(youngs_modulus), 0, BIG, NULL, "Pa",
      "E (Hertz, JKR)", S_ALL},
     {"contact", "poisson", K_REAL, CP(poisson), 0, 0.5, 0, NULL, "", "Poisson ratio nu", S_ALL},
