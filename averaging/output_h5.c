@@ -11,6 +11,7 @@
 
 #include "fields.h"
 #include "h5util.h"
+#include "outfile.h"
 #include "parameters_h5.h"
 
 /* Dimensions of a field dataset: (n2, n1, n0), direction 0 fastest like the
@@ -126,6 +127,9 @@ struct mimas_fields_file {
 int mimas_fields_open(mimas_fields_file **out, const char *path, mimas_error *err)
 {
     *out = NULL;
+    if (mimas_path_is_special(path))
+        return mimas_error_set(err, MIMAS_EUSAGE, "%s: not a regular file (the field file is "
+                               "written under a temporary name and renamed into place)", path);
     mimas_fields_file *ff = calloc(1, sizeof *ff);
     if (!ff)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");

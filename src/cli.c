@@ -2,6 +2,8 @@
 
 #include "cli.h"
 
+#include "outfile.h"
+
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
@@ -396,8 +398,9 @@ int cli_output_open(cli_output *o, const char *path, mimas_error *err)
         return MIMAS_OK;
     }
     o->path = path;
+    o->direct = mimas_path_is_special(path);
     snprintf(o->tmp, sizeof o->tmp, "%s.tmp%ld", path, (long)getpid());
-    o->fp = fopen(o->tmp, "w");
+    o->fp = fopen(o->direct ? path : o->tmp, "w");
     if (!o->fp)
         return mimas_error_set(err, MIMAS_EIO, "%s: cannot write: %s", path, strerror(errno));
     return MIMAS_OK;
@@ -411,6 +414,9 @@ int cli_output_close(cli_output *o, int ok, mimas_error *err)
     if (!o->path) {
         if (ok && fflush(stdout) != 0)
             rc = mimas_error_set(err, MIMAS_EIO, "cannot write the table");
+    } else if (o->direct) {
+        if (fclose(o->fp) != 0 && ok)
+            rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", o->path);
     } else {
         int closed = fclose(o->fp) == 0;
         if (ok && (!closed || rename(o->tmp, o->path) != 0))

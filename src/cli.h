@@ -73,9 +73,11 @@ void cli_progress_done(cli_progress *p);
 typedef struct cli_output {
     FILE *fp;
     const char *path;   /* NULL: standard output */
+    int direct;         /* path is a device or pipe (/dev/stdout, a FIFO): written directly */
     char tmp[4200];
 } cli_output;
-/* path NULL or "-": standard output. */
+/* path NULL or "-": standard output.  A path that is not a regular file
+ * (/dev/null, /dev/stdout, a named pipe) is written directly, not replaced. */
 int cli_output_open(cli_output *o, const char *path, mimas_error *err);
 /* Finishes the table: with ok, flushes (and renames the file into place);
  * else removes the temporary file.  Returns MIMAS_OK or a write error. */

@@ -14,6 +14,7 @@
 
 #include "h5util.h"
 #include "native_layout.h"
+#include "outfile.h"
 #include "parameters_h5.h"
 
 #define PARTICLE_CHUNK_MAX 32768   /* rows of a per-particle chunk */
@@ -80,6 +81,9 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
                       mimas_error *err)
 {
     *out = NULL;
+    if (mimas_path_is_special(path))
+        return mimas_error_set(err, MIMAS_EUSAGE, "%s: not a regular file (a native file needs "
+                               "one)", path);
     mimas_writer *w = calloc(1, sizeof *w);
     if (!w)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");

@@ -53,7 +53,10 @@ echo "== energy: mean energies over t >= $from s and their coefficient of variat
 cat "$out/energy.tsv"
 end=$(date +%s)
 echo
-echo "wet ring shear study done in $((end - start)) s; in $out/:"
+echo "wet ring shear study done in $((end - start)) s of wall time; the processor time of the"
+echo "shell and of the commands it ran (user, system):"
+times
+echo "in $out/:"
 echo "  run-D.h5, fields-D.h5   each run and its fields (D = 0, 0.01, 0.05)"
 echo "  shearband.tsv           the layers of every run; shearband-trends.tsv  Rc, W against D"
 echo "  rheology.tsv            every run's rheology; rheology-trends.tsv  the lines against D"
