@@ -80,7 +80,8 @@ int mimas_study_plot(const char *png, const char *xlabel, const double *x, size_
     }
     mimas_plot_quote(xlabel, q, sizeof q);
     int n = snprintf(script, len, "set multiplot layout %d,%d\nset xlabel %s\nset key top left "
-                     "font ',8'\nset offsets graph 0.05, graph 0.05, graph 0.1, graph 0.1\n",
+                     "font ',8'\nset format y '%%g'\n"
+                     "set offsets graph 0.05, graph 0.05, graph 0.1, graph 0.1\n",
                      rows, columns, q);
     for (size_t k = 0; !rc && k < npanels; k++) {
         char name[32];
