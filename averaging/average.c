@@ -3,6 +3,7 @@
 #include "average.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #ifdef _OPENMP
@@ -12,6 +13,7 @@
 #include "contact_point.h"
 #include "deposit.h"
 #include "fields.h"
+#include "parallel.h"
 #include "voronoi.h"
 
 struct mimas_average {
@@ -30,6 +32,8 @@ struct mimas_average {
     int *ncontacts;
     size_t cap;
     mimas_voronoi_values vor;   /* --weight voronoi: this frame's per-particle values */
+    mimas_weights *ws;          /* per thread: the weights of the object being deposited */
+    double kappa;               /* gradient correction of the kernel on this grid */
 };
 
 static mimas_fields_mode fields_mode(const mimas_weight *wt)
@@ -58,7 +62,17 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
 #endif
     if (a->threads > 1)
         a->thread_sum = calloc((size_t)a->threads * a->cells * NSUMS, sizeof *a->thread_sum);
-    int ok = a->sum && a->frame_sum && a->scratch && (a->threads == 1 || a->thread_sum);
+    a->ws = calloc((size_t)a->threads, sizeof *a->ws);
+    /* the plain cut Gaussian's jump at its cutoff carries the part kappa of a linear
+     * field's gradient where the 3-D kernel is sampled at cell centres; its marginals
+     * and azimuthal averages are continuous */
+    const mimas_grid *g = &o->grid;
+    int sampled = !o->grid_none && g->gridded[2] &&
+                  (g->kind == MIMAS_GRID_CARTESIAN ? g->gridded[0] && g->gridded[1]
+                                                   : g->gridded[1]);
+    a->kappa = sampled && o->weight.kind == MIMAS_WEIGHT_GAUSS ? o->weight.kappa : 0.0;
+    int ok = a->sum && a->frame_sum && a->scratch && a->ws &&
+             (a->threads == 1 || a->thread_sum);
     if (ok && o->spread) {
         a->f_mean = calloc(a->cells * nf, sizeof *a->f_mean);
         a->f_m2 = calloc(a->cells * nf, sizeof *a->f_m2);
@@ -98,6 +112,9 @@ void mimas_average_free(mimas_average *a)
     free(a->scratch);
     free(a->keep);
     free(a->ncontacts);
+    for (int t = 0; a->ws && t < a->threads; t++)
+        mimas_weights_free(&a->ws[t]);
+    free(a->ws);
     free(a);
 }
 
@@ -171,86 +188,60 @@ static void tensor_to_local(const basis *B, const double *T, double *out)
         }
 }
 
-/* ---- deposit callbacks ---- */
+/* ---- accumulation of one object's weights ---- */
 
-typedef struct particle_ctx {
-    double *S;
-    double m, vol, diam, c;   /* c: contact count */
-    double v[3];
-    double vcell;             /* Voronoi cell volume (0: not a Voronoi average) */
+typedef struct particle_vals {
+    double q[S_PARTICLE_END];   /* what the particle adds per unit weight: S_N..S_K */
+    double qg[4];               /* m, m v: times the gradient (S_G) */
+    double v[3];                /* for Shepard's S_U */
+    double vcell;               /* Voronoi cell volume (0: not a Voronoi average) */
     int has_stress;
-    double stress[9];         /* V_cell sigma in the local basis */
-} particle_ctx;
+    double stress[9];           /* V_cell sigma in the local basis */
+} particle_vals;
 
-static void add_particle(void *user, size_t cell, double w, const double *grad)
+static void add_particle(double *S0, const mimas_weights *ws, const particle_vals *p,
+                         int shepard, int voronoi)
 {
-    particle_ctx *p = user;
-    double *S = p->S + cell * NSUMS;
-    if (grad)
-        for (int b = 0; b < 3; b++) {
+    for (size_t k = 0; k < ws->n; k++) {
+        double *S = S0 + ws->cell[k] * NSUMS, w = ws->w[k];
+        for (int m = 0; m < S_PARTICLE_END; m++)
+            S[m] += p->q[m] * w;
+        if (ws->has_grad) {
             /* gradients of mass and momentum densities, for the analytic
-             * velocity gradient of the Gaussian */
-            S[S_GM + b] += p->m * grad[b];
-            for (int a = 0; a < 3; a++)
-                S[S_GP + 3 * a + b] += p->m * p->v[a] * grad[b];
+             * velocity gradient of the kernels */
+            const double *g = &ws->grad[3 * k];
+            for (int b = 0; b < 3; b++)
+                for (int m = 0; m < 4; m++)
+                    S[S_G + 4 * b + m] += p->qg[m] * g[b];
         }
-    S[S_N] += w;
-    S[S_M] += p->m * w;
-    S[S_V] += p->vol * w;
-    S[S_D] += p->diam * w;
-    S[S_Z] += p->c * w;
-    if (p->c >= 2) {
-        S[S_ZN] += p->c * w;
-        S[S_NN] += w;
-    }
-    for (int a = 0; a < 3; a++) {
-        S[S_U + a] += p->v[a] * w;
-        S[S_P + a] += p->m * p->v[a] * w;
-        for (int b = 0; b < 3; b++)
-            S[S_K + 3 * a + b] += p->m * p->v[a] * p->v[b] * w;
-    }
-    S[S_VC] += p->vcell * w;
-    if (p->has_stress) {
-        S[S_VSC] += p->vcell * w;
-        for (int k = 0; k < 9; k++)
-            S[S_VS + k] += p->stress[k] * w;
+        if (shepard)
+            for (int m = 0; m < 3; m++)
+                S[S_U + m] += p->v[m] * w;
+        if (voronoi) {
+            S[S_VC] += p->vcell * w;
+            if (p->has_stress) {
+                S[S_VSC] += p->vcell * w;
+                for (int m = 0; m < 9; m++)
+                    S[S_VS + m] += p->stress[m] * w;
+            }
+        }
     }
 }
 
-typedef struct contact_ctx {
-    double *S;
-    double fb[9], nn[9];   /* f (x) b and n (x) n in the local basis */
-} contact_ctx;
-
-static void add_contact(void *user, size_t cell, double w, const double *grad)
+static void add_contact(double *S0, const mimas_weights *ws, const double q[18])
 {
-    (void)grad;
-    contact_ctx *c = user;
-    double *S = c->S + cell * NSUMS;
-    for (int k = 0; k < 9; k++) {
-        S[S_C + k] += c->fb[k] * w;
-        S[S_F + k] += c->nn[k] * w;
+    for (size_t k = 0; k < ws->n; k++) {
+        double *S = S0 + ws->cell[k] * NSUMS + S_C, w = ws->w[k];
+        for (int m = 0; m < 18; m++)
+            S[m] += q[m] * w;
     }
-}
-
-typedef struct wall_ctx {
-    double *S;
-    double f[3];
-} wall_ctx;
-
-static void add_wall_force(void *user, size_t cell, double w, const double *grad)
-{
-    (void)grad;
-    wall_ctx *c = user;
-    for (int k = 0; k < 3; k++)
-        c->S[cell * NSUMS + S_W + k] += c->f[k] * w;
 }
 
 /* One contact's stress and fabric: f acting on the particle at the end of
  * branch b, the segment from `from` to from + b. */
-static void deposit_branch(const mimas_deposit *dp, const mimas_grid *g, double *S,
-                           const double from[3], const double b[3], const double f[3],
-                           const double at[3])
+static int deposit_branch(const mimas_deposit *dp, const mimas_grid *g, double *S0,
+                          mimas_weights *ws, const double from[3], const double b[3],
+                          const double f[3], const double at[3])
 {
     basis B;
     basis_at(g, at, &B);
@@ -258,15 +249,18 @@ static void deposit_branch(const mimas_deposit *dp, const mimas_grid *g, double 
     to_local(&B, f, fl);
     to_local(&B, b, bl);
     double len = sqrt(bl[0] * bl[0] + bl[1] * bl[1] + bl[2] * bl[2]);
-    contact_ctx c;
-    c.S = S;
+    double q[18]; /* f (x) b and n (x) n in the local basis: S_C, S_F */
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
-            c.fb[3 * i + j] = fl[i] * bl[j];
-            c.nn[3 * i + j] = len > 0 ? bl[i] * bl[j] / (len * len) : 0.0;
+            q[3 * i + j] = fl[i] * bl[j];
+            q[9 + 3 * i + j] = len > 0 ? bl[i] * bl[j] / (len * len) : 0.0;
         }
     double to[3] = {from[0] + b[0], from[1] + b[1], from[2] + b[2]};
-    mimas_deposit_segment(dp, from, to, add_contact, &c);
+    ws->n = 0;
+    if (mimas_deposit_segment(dp, from, to, ws))
+        return MIMAS_EIO;
+    add_contact(S0, ws, q);
+    return MIMAS_OK;
 }
 
 static int selected(const mimas_average_options *o, const mimas_particles *p, size_t k)
@@ -331,65 +325,96 @@ static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
 }
 
 /* A wall contact (or a contact with an excluded particle): f on the particle
- * at r, the segment from the contact point c to r (PHYSICS 1, 6), and the
+ * at r, the segment from the contact point c to r (docs/theory.md §1, §6), and the
  * force as a wall force density at c. */
-static void deposit_wall_contact(const mimas_deposit *dp, const mimas_grid *g, double *S,
-                                 const mimas_box *box, const double r[3], const double c[3],
-                                 const double f[3])
+static int deposit_wall_contact(const mimas_deposit *dp, const mimas_grid *g, double *S,
+                                mimas_weights *ws, const mimas_box *box, const double r[3],
+                                const double c[3], const double f[3])
 {
     double b[3];
     mimas_branch(box, r, c, b);
     double from[3] = {r[0] - b[0], r[1] - b[1], r[2] - b[2]};
-    deposit_branch(dp, g, S, from, b, f, from);
-    wall_ctx wc = {S, {0, 0, 0}};
+    if (deposit_branch(dp, g, S, ws, from, b, f, from))
+        return MIMAS_EIO;
+    double fl[3];
     basis B;
     basis_at(g, from, &B);
-    to_local(&B, f, wc.f);
-    mimas_deposit_sphere(dp, from, 0.0, add_wall_force, &wc);
+    to_local(&B, f, fl);
+    ws->n = 0;
+    if (mimas_deposit_sphere(dp, from, 0.0, 0, ws))
+        return MIMAS_EIO;
+    for (size_t k = 0; k < ws->n; k++)
+        for (int m = 0; m < 3; m++)
+            S[ws->cell[k] * NSUMS + S_W + m] += fl[m] * ws->w[k];
+    return MIMAS_OK;
 }
 
 /* Thread t of nt deposits every nt-th particle, contact and wall contact of
- * the frame into the sums S. */
-static void deposit_frame(const mimas_average *a, const mimas_frame *f, const mimas_grid *g,
-                          const mimas_deposit *dp, double *S, int t, int nt)
+ * the frame into the sums S; MIMAS_EIO when out of memory. */
+static int deposit_frame(const mimas_average *a, const mimas_frame *f, const mimas_grid *g,
+                         const mimas_deposit *dp, double *S, int t, int nt)
 {
     const mimas_particles *p = &f->particles;
+    mimas_weights *ws = &a->ws[t];
+    int shepard = a->opt.weight.kind == MIMAS_WEIGHT_SHEPARD, voronoi = a->opt.weight.voronoi;
+    int with_grad = a->opt.weight.kind == MIMAS_WEIGHT_GAUSS ||
+                    a->opt.weight.kind == MIMAS_WEIGHT_LUCY;
     for (size_t k = (size_t)t; k < p->n; k += (size_t)nt) {
         if (!a->keep[k])
             continue;
-        particle_ctx pc = {S, p->mass[k], 4.0 / 3.0 * M_PI * pow(p->radius[k], 3),
-                           2.0 * p->radius[k], (double)a->ncontacts[k], {0, 0, 0}, 0.0, 0, {0}};
+        particle_vals pv;
+        memset(&pv, 0, sizeof pv);
+        double m = p->mass[k], c = (double)a->ncontacts[k], v[3];
         basis B;
         basis_at(g, p->pos[k], &B);
-        to_local(&B, p->vel[k], pc.v);
-        if (a->opt.weight.voronoi) {
+        to_local(&B, p->vel[k], v);
+        pv.q[S_N] = 1.0;
+        pv.q[S_M] = m;
+        pv.q[S_V] = 4.0 / 3.0 * M_PI * pow(p->radius[k], 3);
+        pv.q[S_D] = 2.0 * p->radius[k];
+        pv.q[S_Z] = c;
+        pv.q[S_ZN] = c >= 2 ? c : 0.0;
+        pv.q[S_NN] = c >= 2 ? 1.0 : 0.0;
+        pv.qg[0] = m;
+        for (int i = 0; i < 3; i++) {
+            pv.v[i] = v[i];
+            pv.q[S_P + i] = m * v[i];
+            pv.qg[1 + i] = m * v[i];
+            for (int j = 0; j < 3; j++)
+                pv.q[S_K + 3 * i + j] = m * v[i] * v[j];
+        }
+        if (voronoi) {
             /* V_cell sigma_k: an empty cell's stress is NaN and left out */
-            pc.vcell = a->vor.volume[k];
+            pv.vcell = a->vor.volume[k];
             const double *st = a->vor.stress ? &a->vor.stress[9 * k] : NULL;
-            pc.has_stress = st && !isnan(st[0]);
-            if (pc.has_stress) {
+            pv.has_stress = st && !isnan(st[0]);
+            if (pv.has_stress) {
                 double T[9];
-                for (int m = 0; m < 9; m++)
-                    T[m] = pc.vcell * st[m];
-                tensor_to_local(&B, T, pc.stress);
+                for (int q = 0; q < 9; q++)
+                    T[q] = pv.vcell * st[q];
+                tensor_to_local(&B, T, pv.stress);
             }
         }
-        mimas_deposit_sphere(dp, p->pos[k], p->radius[k], add_particle, &pc);
+        ws->n = 0;
+        if (mimas_deposit_sphere(dp, p->pos[k], p->radius[k], with_grad, ws))
+            return MIMAS_EIO;
+        add_particle(S, ws, &pv, shepard, voronoi);
     }
-    if (a->opt.weight.voronoi)
-        return; /* the stress comes from the per-particle stresses */
+    if (voronoi)
+        return MIMAS_OK; /* the stress comes from the per-particle stresses */
     const mimas_contacts *c = &f->contacts;
     for (size_t k = (size_t)t; f->has_contacts && k < c->n; k += (size_t)nt) {
         size_t i = c->i[k], j = c->j[k];
         if (!a->keep[i] && !a->keep[j])
             continue;
         if (a->keep[i] && a->keep[j]) {
-            /* f_ij (x) (r_i - r_j), the branch by the minimum image (PHYSICS 1) */
+            /* f_ij (x) (r_i - r_j), the branch by the minimum image (docs/theory.md §1) */
             double b[3] = {p->pos[i][0] - p->pos[j][0], p->pos[i][1] - p->pos[j][1],
                            p->pos[i][2] - p->pos[j][2]};
             mimas_box_min_image(&f->box, b);
             const double *at = (c->present & MIMAS_C_POINT) ? c->point[k] : p->pos[i];
-            deposit_branch(dp, g, S, p->pos[j], b, c->force[k], at);
+            if (deposit_branch(dp, g, S, ws, p->pos[j], b, c->force[k], at))
+                return MIMAS_EIO;
             continue;
         }
         /* one side excluded (a wall particle): a wall contact of the other */
@@ -398,15 +423,18 @@ static void deposit_frame(const mimas_average *a, const mimas_frame *f, const mi
         mimas_contact_point(f, k, in, cp);
         for (int m = 0; m < 3; m++)
             fin[m] = in == i ? c->force[k][m] : -c->force[k][m];
-        deposit_wall_contact(dp, g, S, &f->box, p->pos[in], cp, fin);
+        if (deposit_wall_contact(dp, g, S, ws, &f->box, p->pos[in], cp, fin))
+            return MIMAS_EIO;
     }
     const mimas_wall_contacts *w = &f->walls;
     for (size_t k = (size_t)t; f->has_walls && k < w->n; k += (size_t)nt) {
         size_t i = w->particle[k];
         if (!a->keep[i])
             continue;
-        deposit_wall_contact(dp, g, S, &f->box, p->pos[i], w->point[k], w->force[k]);
+        if (deposit_wall_contact(dp, g, S, ws, &f->box, p->pos[i], w->point[k], w->force[k]))
+            return MIMAS_EIO;
     }
+    return MIMAS_OK;
 }
 
 int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
@@ -427,11 +455,14 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
          * result depends on the thread count only through summation order */
         memset(a->thread_sum, 0, (size_t)a->threads * nsum * sizeof *a->thread_sum);
 #ifdef _OPENMP
-#pragma omp parallel num_threads(a->threads)
+        int failed = 0;
+#pragma omp parallel num_threads(a->threads) reduction(| : failed)
         {
             int t = omp_get_thread_num(), nt = omp_get_num_threads();
-            deposit_frame(a, f, &g, &dp, a->thread_sum + (size_t)t * nsum, t, nt);
+            failed |= deposit_frame(a, f, &g, &dp, a->thread_sum + (size_t)t * nsum, t, nt);
         }
+        if (failed)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
 #endif
         memset(S, 0, nsum * sizeof *S);
         for (int t = 0; t < a->threads; t++)
@@ -439,7 +470,8 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
                 S[k] += a->thread_sum[(size_t)t * nsum + k];
     } else {
         memset(S, 0, nsum * sizeof *S);
-        deposit_frame(a, f, &g, &dp, S, 0, 1);
+        if (deposit_frame(a, f, &g, &dp, S, 0, 1))
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
     }
     for (size_t k = 0; k < a->cells * NSUMS; k++)
         a->sum[k] += S[k];
@@ -491,7 +523,7 @@ static int velocity_gradient(const mimas_average *a, const double *fields, size_
     if (a->opt.weight.kind == MIMAS_WEIGHT_GAUSS || a->opt.weight.kind == MIMAS_WEIGHT_LUCY) {
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++)
-                L[i][j] = (S[S_GP + 3 * i + j] - V[i] * S[S_GM + j]) / S[S_M];
+                L[i][j] = (S[S_GP(i, j)] - V[i] * S[S_GM(j)]) / (S[S_M] * (1.0 - a->kappa));
         return 1;
     }
     int idx[3];
@@ -558,4 +590,88 @@ int mimas_average_fields(const mimas_average *a, double *fields, double *sd, dou
     }
     free(sums);
     return 0;
+}
+
+/* ---- the state for merging runs split over processes ---- */
+int mimas_average_pack(const mimas_average *a, mimas_bytes *out, mimas_error *err)
+{
+    size_t nf = mimas_fields_count(), ns = a->cells * NSUMS, nq = a->cells * nf;
+    size_t n = sizeof(uint64_t) + sizeof a->grid +
+               (ns + (a->opt.spread ? 3 * nq : 0)) * sizeof(double);
+    if (n > out->cap) {
+        unsigned char *p = realloc(out->data, n);
+        if (!p)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for %zu cells", a->cells);
+        out->data = p;
+        out->cap = n;
+    }
+    uint64_t frames = a->frames;
+    unsigned char *p = out->data;
+    memcpy(p, &frames, sizeof frames);
+    p += sizeof frames;
+    memcpy(p, &a->grid, sizeof a->grid);
+    p += sizeof a->grid;
+    memcpy(p, a->sum, ns * sizeof(double));
+    p += ns * sizeof(double);
+    if (a->opt.spread) {
+        memcpy(p, a->f_mean, nq * sizeof(double));
+        memcpy(p + nq * sizeof(double), a->f_m2, nq * sizeof(double));
+        memcpy(p + 2 * nq * sizeof(double), a->f_count, nq * sizeof(double));
+    }
+    out->n = n;
+    return MIMAS_OK;
+}
+
+int mimas_average_merge(mimas_average *a, const unsigned char *data, size_t n,
+                        mimas_error *err)
+{
+    size_t nf = mimas_fields_count(), ns = a->cells * NSUMS, nq = a->cells * nf;
+    if (n != sizeof(uint64_t) + sizeof a->grid +
+                 (ns + (a->opt.spread ? 3 * nq : 0)) * sizeof(double))
+        return mimas_error_set(err, MIMAS_EDATA, "an average state of %zu bytes does not fit "
+                               "%zu cells", n, a->cells);
+    uint64_t frames;
+    memcpy(&frames, data, sizeof frames);
+    data += sizeof frames;
+    /* an average without frames takes the grid of the state (as fitted to its
+     * first frame); otherwise a keeps its own */
+    if (a->frames == 0)
+        memcpy(&a->grid, data, sizeof a->grid);
+    data += sizeof a->grid;
+    for (size_t k = 0; k < ns; k++) {
+        double v;
+        memcpy(&v, data + k * sizeof v, sizeof v);
+        a->sum[k] += v;
+    }
+    data += ns * sizeof(double);
+    for (size_t k = 0; a->opt.spread && k < nq; k++) {
+        double mb, m2b, nb;
+        memcpy(&mb, data + k * sizeof mb, sizeof mb);
+        memcpy(&m2b, data + (nq + k) * sizeof m2b, sizeof m2b);
+        memcpy(&nb, data + (2 * nq + k) * sizeof nb, sizeof nb);
+        double na = a->f_count[k], nt = na + nb;
+        if (nb == 0)
+            continue;
+        double delta = mb - a->f_mean[k];
+        a->f_mean[k] += delta * nb / nt;
+        a->f_m2[k] += m2b + delta * delta * na * nb / nt;
+        a->f_count[k] = nt;
+    }
+    a->frames += (size_t)frames;
+    return MIMAS_OK;
+}
+
+static int pack_any(const void *obj, mimas_bytes *out, mimas_error *err)
+{
+    return mimas_average_pack(obj, out, err);
+}
+
+static int merge_any(void *obj, const unsigned char *data, size_t n, mimas_error *err)
+{
+    return mimas_average_merge(obj, data, n, err);
+}
+
+int mimas_average_reduce(mimas_average *a, mimas_error *err)
+{
+    return mimas_par_reduce(a, pack_any, merge_any, err);
 }

@@ -10,6 +10,7 @@
 
 #include "error.h"
 #include "frame.h"
+#include "frame_pack.h"
 #include "grid.h"
 #include "weight.h"
 
@@ -47,6 +48,19 @@ const mimas_weight *mimas_average_weight(const mimas_average *a);
 int mimas_average_fields(const mimas_average *a, double *fields, double *sd, double *count);
 /* The time-averaged primary sums of a cell (NSUMS values, fields.h). */
 void mimas_average_sums(const mimas_average *a, size_t cell, double *sums);
+/* The accumulated state (frames, primary sums, per-frame statistics) as
+ * bytes, and merging such a state into an average of the same options: for
+ * runs split over processes (frames in any order: sums add, the per-frame
+ * statistics combine by Chan et al.'s pairwise formula).  The grid stays the
+ * one of a's first frame (an average without frames takes the state's). */
+int mimas_average_pack(const mimas_average *a, mimas_bytes *out, mimas_error *err);
+int mimas_average_merge(mimas_average *a, const unsigned char *data, size_t n,
+                        mimas_error *err);
+
+/* Under MPI: merges every rank's average onto rank 0's (collective; the
+ * agreed status, MIMAS_OK when fine).  One rank: nothing to do. */
+int mimas_average_reduce(mimas_average *a, mimas_error *err);
+
 /* Forgets all frames (the grid is fitted again to the next frame). */
 void mimas_average_reset(mimas_average *a);
 void mimas_average_free(mimas_average *a);

@@ -3,9 +3,116 @@
 #include "deposit.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "gauss_legendre.h"
 #include "overlap.h"
+
+void mimas_weights_free(mimas_weights *ws)
+{
+    free(ws->cell);
+    free(ws->w);
+    free(ws->grad);
+    memset(ws, 0, sizeof *ws);
+}
+
+/* Room for k more entries. */
+static int reserve(mimas_weights *ws, size_t k)
+{
+    if (ws->n + k <= ws->cap)
+        return MIMAS_OK;
+    size_t cap = ws->cap ? ws->cap : 256;
+    while (cap < ws->n + k)
+        cap *= 2;
+    size_t *c = realloc(ws->cell, cap * sizeof *c);
+    if (c)
+        ws->cell = c;
+    double *w = realloc(ws->w, cap * sizeof *w);
+    if (w)
+        ws->w = w;
+    double *g = realloc(ws->grad, 3 * cap * sizeof *g);
+    if (g)
+        ws->grad = g;
+    if (!c || !w || !g)
+        return MIMAS_EIO;
+    ws->cap = cap;
+    return MIMAS_OK;
+}
+
+static inline void put(mimas_weights *ws, size_t cell, double w)
+{
+    ws->cell[ws->n] = cell;
+    ws->w[ws->n] = w;
+    ws->n++;
+}
+
+static inline void put_grad(mimas_weights *ws, size_t cell, double w, double g0, double g1,
+                            double g2)
+{
+    double *g = &ws->grad[3 * ws->n];
+    g[0] = g0;
+    g[1] = g1;
+    g[2] = g2;
+    put(ws, cell, w);
+}
+
+/* Whether shift s projects onto the directions a kernel is resolved in like an
+ * earlier shift does (its image has the same marginal there). */
+static int same_projection(const mimas_deposit *dp, const mimas_grid *g, int s, int t)
+{
+    double a[3], b[3];
+    if (g->kind == MIMAS_GRID_CARTESIAN) {
+        for (int k = 0; k < dp->dims; k++) {
+            double x = dp->shift[s][dp->gdir[k]], y = dp->shift[t][dp->gdir[k]];
+            if (fabs(x - y) > 1e-12 * (fabs(x) + fabs(y)))
+                return 0;
+        }
+        return 1;
+    }
+    double o[3] = {0, 0, 0};
+    mimas_grid_to_axis(g, dp->shift[s], a);
+    mimas_grid_to_axis(g, dp->shift[t], b);
+    mimas_grid_to_axis(g, o, o);
+    for (int k = 0; k < (g->gridded[2] ? 3 : 2); k++) {
+        double x = a[k] - o[k], y = b[k] - o[k];
+        if (fabs(x - y) > 1e-12 * (fabs(x) + fabs(y)))
+            return 0;
+    }
+    return 1;
+}
+
+/* G(u) = e^{u^2} erf(u) satisfies G' = 2u G + 2/sqrt(pi): its Taylor coefficients about
+ * u_c follow from a_0 = G(u_c) by (k + 1) a_{k+1} = 2 u_c a_k + 2 a_{k-1} (a_1 = 2 u_c a_0 +
+ * 2/sqrt(pi)), all positive for u_c > 0 (no cancellation).  Degree 12 on intervals of 1/16
+ * leaves a relative truncation error below 1e-17 up to u = 4. */
+enum { GTAB_N = 64, GTAB_DEG = 12 };
+static const double GTAB_DU = 1.0 / 16.0;
+
+static void gtab_setup(mimas_deposit *dp)
+{
+    for (int m = 0; m < GTAB_N; m++) {
+        double uc = (m + 0.5) * GTAB_DU, *a = dp->gtab[m];
+        a[0] = exp(uc * uc) * erf(uc);
+        a[1] = 2.0 * uc * a[0] + 2.0 / sqrt(M_PI);
+        for (int k = 1; k < GTAB_DEG; k++)
+            a[k + 1] = (2.0 * uc * a[k] + 2.0 * a[k - 1]) / (k + 1);
+    }
+}
+
+/* G(u) for |u| < 4 (odd) */
+static inline double gtab_eval(const mimas_deposit *dp, double u)
+{
+    double x = fabs(u);
+    int m = (int)(x * 16.0);
+    if (m >= GTAB_N)
+        m = GTAB_N - 1;
+    const double *a = dp->gtab[m];
+    double d = x - (m + 0.5) * GTAB_DU, v = a[GTAB_DEG];
+    for (int k = GTAB_DEG - 1; k >= 0; k--)
+        v = v * d + a[k];
+    return u < 0 ? -v : v;
+}
 
 void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,
                         const mimas_box *box, int grid_none)
@@ -18,6 +125,24 @@ void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weig
     for (int d = 0; d < 3; d++)
         dp->h[d] = (g->hi[d] - g->lo[d]) / g->n[d];
     dp->cart_volume = dp->h[0] * dp->h[1] * dp->h[2];
+    dp->kernel = wt->kind >= MIMAS_WEIGHT_GAUSS;
+    dp->inv_extent = 1.0;
+    if (g->kind == MIMAS_GRID_CARTESIAN) {
+        for (int d = 0; d < 3; d++)
+            if (g->gridded[d])
+                dp->gdir[dp->dims++] = d;
+            else
+                dp->inv_extent /= g->hi[d] - g->lo[d];
+    } else {
+        dp->dims = g->gridded[2] ? 3 : 2;
+        if (!g->gridded[2])
+            dp->inv_extent = 1.0 / (g->hi[2] - g->lo[2]);
+    }
+    if (dp->kernel && wt->kind != MIMAS_WEIGHT_LUCY && g->kind == MIMAS_GRID_CARTESIAN &&
+        dp->dims == 3 && wt->cutoff / M_SQRT2 < GTAB_N * GTAB_DU) {
+        gtab_setup(dp);
+        dp->gtab_ok = 1;
+    }
     /* images along the periodic edge vectors: shifts k_a a + k_b b + k_c c */
     double e[3][3];
     mimas_box_edges(box, e);
@@ -25,6 +150,10 @@ void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weig
     for (int d = 0; d < 3; d++)
         range[d] = box->periodic[d] ? 1 : 0;
     dp->nshift = 0;
+    /* a kernel integrated over a direction takes in all of its images there:
+     * only images that differ in the resolved directions are added */
+    int marginal = dp->kernel && (g->kind == MIMAS_GRID_CARTESIAN ? dp->dims < 3
+                                                                  : !g->gridded[2]);
     for (int pass = 0; pass < 2; pass++) /* the zero shift first */
         for (int i = -range[0]; i <= range[0]; i++)
             for (int j = -range[1]; j <= range[1]; j++)
@@ -34,78 +163,30 @@ void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weig
                         continue;
                     for (int d = 0; d < 3; d++)
                         dp->shift[dp->nshift][d] = i * e[0][d] + j * e[1][d] + k * e[2][d];
-                    dp->nshift++;
+                    int dup = 0;
+                    for (int t = 0; marginal && t < dp->nshift && !dup; t++)
+                        dup = same_projection(dp, g, dp->nshift, t);
+                    if (!dup)
+                        dp->nshift++;
                 }
 }
 
 /* Cell index range [i0, i1] of direction d overlapping [lo, hi] (grid
- * coordinates); 0 if none. */
-static int index_range(const mimas_grid *g, const double *h, int d, double lo, double hi,
-                       int *i0, int *i1)
+ * coordinates); 0 if none.  Directions a kernel is integrated over have
+ * their one cell whatever the range. */
+static int index_range(const mimas_deposit *dp, int d, double lo, double hi, int *i0, int *i1)
 {
+    const mimas_grid *g = dp->grid;
+    if (dp->kernel && !g->gridded[d] && (g->kind == MIMAS_GRID_CARTESIAN || d == 2)) {
+        *i0 = *i1 = 0;
+        return 1;
+    }
     if (hi < g->lo[d] || lo > g->hi[d])
         return 0;
-    double a = floor((lo - g->lo[d]) / h[d]), b = floor((hi - g->lo[d]) / h[d]);
+    double a = floor((lo - g->lo[d]) / dp->h[d]), b = floor((hi - g->lo[d]) / dp->h[d]);
     *i0 = a < 0 ? 0 : (int)a;
     *i1 = b >= g->n[d] ? g->n[d] - 1 : (int)b;
     return *i0 <= *i1;
-}
-
-/* Gauss-Legendre nodes and weights on [-1, 1] (16 points, symmetric). */
-static const double gl_x[8] = {0.0950125098376374, 0.2816035507792589, 0.4580167776572274,
-                               0.6178762444026438, 0.7554044083550030, 0.8656312023878318,
-                               0.9445750230732326, 0.9894009349916499};
-static const double gl_w[8] = {0.1894506104550685, 0.1826034150449236, 0.1691565193950025,
-                               0.1495959888165767, 0.1246289712555339, 0.0951585116824928,
-                               0.0622535239386479, 0.0271524594117541};
-
-/* Gauss-Legendre 4 and 8 points on [-1, 1] (half of each symmetric set). */
-static const double gl4_x[2] = {0.3399810435848563, 0.8611363115940526};
-static const double gl4_w[2] = {0.6521451548625461, 0.3478548451374538};
-static const double gl8_x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-                                0.9602898564975363};
-static const double gl8_w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
-                                0.1012285362903763};
-
-/* The kernel averaged over the azimuth (PHYSICS 6, cylindrical grids without
- * phi cells): at the ring of radius r, height z about the axis, for a
- * particle at axis-frame position x, (1/pi) int_0^tm phi(D(t)) dt with
- * D^2 = r^2 + rho^2 - 2 r rho cos t + (z - x_z)^2 and tm where D reaches the
- * kernel's support (the kernels vanish there, so the limit adds nothing to
- * the gradient); 2 x 16-point Gauss-Legendre over [0, tm].  grad gets
- * (d/dr, 0, d/dz). */
-static double ring_kernel(const mimas_weight *wt, double r, double z, const double x[3],
-                          double grad[3])
-{
-    double rho = hypot(x[0], x[1]), dz = z - x[2], R = mimas_weight_reach(wt);
-    double base = r * r + rho * rho + dz * dz;
-    grad[0] = grad[1] = grad[2] = 0.0;
-    double tm;
-    if (r * rho <= 0.0)
-        tm = base < R * R ? M_PI : 0.0;
-    else {
-        double k = (base - R * R) / (2.0 * r * rho);
-        tm = k <= -1.0 ? M_PI : (k >= 1.0 ? 0.0 : acos(k));
-    }
-    if (!(tm > 0.0))
-        return 0.0;
-    double sum = 0.0;
-    for (int half = 0; half < 2; half++) {
-        double lo = half ? 0.5 * tm : 0.0, h = 0.25 * tm; /* [lo, lo + tm/2] */
-        for (int k = 0; k < 8; k++)
-            for (int sgn = -1; sgn <= 1; sgn += 2) {
-                double t = lo + h * (1.0 + sgn * gl_x[k]);
-                /* field point (r, 0, z), particle (rho cos t, rho sin t, x_z) */
-                double d[3] = {r - rho * cos(t), -rho * sin(t), dz}, g[3];
-                double f = mimas_kernel_phi_grad(wt, d, g);
-                sum += h * gl_w[k] * f;
-                grad[0] += h * gl_w[k] * g[0];
-                grad[2] += h * gl_w[k] * g[2];
-            }
-    }
-    grad[0] /= M_PI;
-    grad[2] /= M_PI;
-    return sum / M_PI;
 }
 
 /* Bounds and centre of the cell with indices idx (no divisions). */
@@ -120,46 +201,19 @@ static void cell_geometry(const mimas_deposit *dp, const int idx[3], double lo[3
     }
 }
 
+/* The centre of cell i along direction d. */
+static double centre(const mimas_deposit *dp, int d, int i)
+{
+    const mimas_grid *g = dp->grid;
+    double lo = g->lo[d] + dp->h[d] * i, hi = i + 1 == g->n[d] ? g->hi[d] : lo + dp->h[d];
+    return 0.5 * (lo + hi);
+}
+
 static double cell_volume(const mimas_deposit *dp, const double lo[3], const double hi[3])
 {
     if (dp->grid->kind == MIMAS_GRID_CARTESIAN)
         return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
     return 0.5 * (hi[0] * hi[0] - lo[0] * lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-}
-
-/* The weight of a sphere (or point, R = 0) in one cell; for the Gaussian on
- * a Cartesian grid also its gradient (grad set, *has_grad = 1). */
-static double cell_weight_sphere(const mimas_deposit *dp, const int idx[3], const double x[3],
-                                 const double a[3], double R, double grad[3], int *has_grad)
-{
-    const mimas_grid *g = dp->grid;
-    double lo[3], hi[3], c[3];
-    cell_geometry(dp, idx, lo, hi, c);
-    *has_grad = 0;
-    if (dp->wt->kind >= MIMAS_WEIGHT_GAUSS) {
-        if (g->kind == MIMAS_GRID_CARTESIAN) {
-            double d[3] = {c[0] - x[0], c[1] - x[1], c[2] - x[2]};
-            *has_grad = 1;
-            return mimas_kernel_phi_grad(dp->wt, d, grad);
-        }
-        *has_grad = 1;
-        if (!g->gridded[1])
-            return ring_kernel(dp->wt, c[0], c[2], a, grad);
-        /* phi cells: the kernel at the cell centre, its gradient in the
-         * centre's (r, phi, z) components */
-        double cs = cos(c[1]), sn = sin(c[1]), gc[3];
-        double d[3] = {c[0] * cs - a[0], c[0] * sn - a[1], c[2] - a[2]};
-        double f = mimas_kernel_phi_grad(dp->wt, d, gc);
-        grad[0] = cs * gc[0] + sn * gc[1];
-        grad[1] = -sn * gc[0] + cs * gc[1];
-        grad[2] = gc[2];
-        return f;
-    }
-    double vol_p = 4.0 / 3.0 * M_PI * R * R * R;
-    double ov = g->kind == MIMAS_GRID_CARTESIAN
-                    ? overlap_sphere_box(x, R, lo, hi)
-                    : overlap_sphere_cylcell(a, R, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]);
-    return ov / (vol_p * cell_volume(dp, lo, hi));
 }
 
 /* The cell holding a point (grid coordinates q), or 0 if it is off the grid. */
@@ -194,36 +248,30 @@ static void grid_coords(const mimas_grid *g, const double a[3], double q[3])
     q[2] = a[2];
 }
 
-/* Calls visit for every cell that may meet the ball of radius reach about
- * the axis-frame point a (all phi cells when the ball holds the axis or the
- * phi range wraps). */
-typedef void (*cell_visit)(const mimas_deposit *dp, size_t cell, const int idx[3], void *ctx);
-static void candidate_cells(const mimas_deposit *dp, const double a[3], double reach,
-                            cell_visit visit, void *ctx)
+/* The index box of the cells that may meet the ball of radius reach about the
+ * axis-frame point a (all phi cells when the ball holds the axis or the phi
+ * range wraps); 0 if there are none. */
+static int candidate_box(const mimas_deposit *dp, const double a[3], double reach, int lo[3],
+                         int hi[3])
 {
     const mimas_grid *g = dp->grid;
     double q[3];
     grid_coords(g, a, q);
-    int lo[3], hi[3];
     if (g->kind == MIMAS_GRID_CARTESIAN) {
         for (int d = 0; d < 3; d++)
-            if (!index_range(g, dp->h, d, q[d] - reach, q[d] + reach, &lo[d], &hi[d]))
-                return;
-    } else {
-        if (!index_range(g, dp->h, 0, q[0] - reach, q[0] + reach, &lo[0], &hi[0]) ||
-            !index_range(g, dp->h, 2, q[2] - reach, q[2] + reach, &lo[2], &hi[2]))
-            return;
-        double half = q[0] > reach ? asin(reach / q[0]) : M_PI;
-        lo[1] = 0;
-        hi[1] = g->n[1] - 1;
-        if (half < M_PI && q[1] - half >= g->lo[1] && q[1] + half <= g->hi[1])
-            index_range(g, dp->h, 1, q[1] - half, q[1] + half, &lo[1], &hi[1]);
+            if (!index_range(dp, d, q[d] - reach, q[d] + reach, &lo[d], &hi[d]))
+                return 0;
+        return 1;
     }
-    int idx[3];
-    for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
-        for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++)
-            for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++)
-                visit(dp, mimas_grid_index(g, idx), idx, ctx);
+    if (!index_range(dp, 0, q[0] - reach, q[0] + reach, &lo[0], &hi[0]) ||
+        !index_range(dp, 2, q[2] - reach, q[2] + reach, &lo[2], &hi[2]))
+        return 0;
+    double half = q[0] > reach ? asin(reach / q[0]) : M_PI;
+    lo[1] = 0;
+    hi[1] = g->n[1] - 1;
+    if (half < M_PI && q[1] - half >= g->lo[1] && q[1] + half <= g->hi[1])
+        index_range(dp, 1, q[1] - half, q[1] + half, &lo[1], &hi[1]);
+    return 1;
 }
 
 /* Whether an image of an object with Cartesian bounding box [lo, hi], shifted
@@ -234,43 +282,258 @@ static int image_reaches(const mimas_deposit *dp, int s, const double lo[3], con
     const mimas_grid *g = dp->grid;
     if (g->kind != MIMAS_GRID_CARTESIAN)
         return 1;
-    for (int d = 0; d < 3; d++)
+    for (int d = 0; d < 3; d++) {
+        if (dp->kernel && !g->gridded[d])
+            continue;
         if (hi[d] + dp->shift[s][d] < g->lo[d] || lo[d] + dp->shift[s][d] > g->hi[d])
             return 0;
+    }
     return 1;
 }
 
-typedef struct sphere_ctx {
-    const double *x, *a;
-    double R;
-    deposit_fn fn;
-    void *user;
-} sphere_ctx;
-
-static void visit_sphere(const mimas_deposit *dp, size_t cell, const int idx[3], void *ctx)
+/* e^{-(c_i - x)^2 k} for the cells i = 0..n-1 of direction d from lo, c_i their
+ * centres (uniform spacing h inside the grid): from the cell nearest to x
+ * outwards by the Gaussian recurrence e_{i+1} = e_i r_i, r_{i+1} = r_i e^{-2 h^2 k}
+ * (two products per cell; rounding grows by an ulp or two per step, ~1e-15 over
+ * the few cells of a kernel), every value checked against the cutoff by the
+ * caller.  The last cell of a grid may be shorter: its centre is taken exactly. */
+static void gauss_row(const mimas_deposit *dp, int d, int lo, int n, double x, double k,
+                      double *e, size_t stride)
 {
-    sphere_ctx *s = ctx;
-    double grad[3];
-    int has_grad;
-    double w = cell_weight_sphere(dp, idx, s->x, s->a, s->R, grad, &has_grad);
-    if (w != 0.0)
-        s->fn(s->user, cell, w, has_grad ? grad : NULL);
+    double h = dp->h[d];
+    int m = (int)floor((x - centre(dp, d, lo)) / h + 0.5);
+    if (m < 0)
+        m = 0;
+    if (m > n - 1)
+        m = n - 1;
+    double c = centre(dp, d, lo + m) - x;
+    double q = exp(-2.0 * h * h * k);
+    double e0 = exp(-c * c * k);
+    e[(size_t)m * stride] = e0;
+    /* upwards: (c + h)^2 - c^2 = 2 c h + h^2; downwards the ratio is q / that */
+    double up = exp(-(2.0 * c * h + h * h) * k), r = up, v = e0;
+    for (int i = m + 1; i < n; i++) {
+        v *= r;
+        r *= q;
+        e[(size_t)i * stride] = v;
+    }
+    r = q / up;
+    v = e0;
+    for (int i = m - 1; i >= 0; i--) {
+        v *= r;
+        r *= q;
+        e[(size_t)i * stride] = v;
+    }
+    /* the grid's last cell (its upper edge is the grid's bound): exact */
+    const mimas_grid *g = dp->grid;
+    if (lo + n == g->n[d] && n > 0 && m != n - 1) {
+        double cl = centre(dp, d, lo + n - 1) - x;
+        e[(size_t)(n - 1) * stride] = exp(-cl * cl * k);
+    }
 }
 
-void mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, deposit_fn fn,
-                          void *user)
+/* What a cell-by-cell deposit needs: the object (Cartesian and axis-frame
+ * positions, radius) and, per cell, its weight and (kernels) gradient. */
+typedef struct cell_object {
+    const double *x, *a;   /* a point or a segment's start: Cartesian, axis frame */
+    const double *b, *ab;  /* a segment's end (NULL for points and spheres) */
+    double R, vol;         /* bins: the sphere */
+} cell_object;
+typedef double (*cell_weight_fn)(const mimas_deposit *dp, const int idx[3], const double lo[3],
+                                 const double hi[3], const double c[3], const cell_object *o,
+                                 double *grad);
+
+/* Calls weight for every cell of the index box [lo, hi] and keeps the nonzero
+ * ones, times scale (with their gradients when with_grad). */
+static int each_cell(const mimas_deposit *dp, const int lo[3], const int hi[3],
+                     cell_weight_fn weight, const cell_object *o, int with_grad, double scale,
+                     mimas_weights *ws)
 {
     const mimas_grid *g = dp->grid;
+    if (reserve(ws, (size_t)(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1)))
+        return MIMAS_EIO;
+    int idx[3];
+    for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
+        for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++)
+            for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++) {
+                double clo[3], chi[3], c[3], gr[3] = {0, 0, 0};
+                cell_geometry(dp, idx, clo, chi, c);
+                double v = weight(dp, idx, clo, chi, c, o, with_grad ? gr : NULL);
+                if (v == 0.0 && gr[0] == 0.0 && gr[1] == 0.0 && gr[2] == 0.0)
+                    continue;
+                size_t cell = mimas_grid_index(g, idx);
+                if (with_grad)
+                    put_grad(ws, cell, v * scale, gr[0] * scale, gr[1] * scale, gr[2] * scale);
+                else
+                    put(ws, cell, v * scale);
+            }
+    ws->has_grad = with_grad;
+    return MIMAS_OK;
+}
+
+/* ---- kernels: particles ---------------------------------------------------------- */
+
+/* The Gaussian on a Cartesian x-y-z grid, separable: per direction the 1-D
+ * factors e^{-(c - x)^2/2w^2} of the cells within reach, their products in the
+ * cells inside the cutoff sphere (the cut is the sum of the squared offsets). */
+static int gauss_sphere_xyz(const mimas_deposit *dp, const double x[3], int with_grad,
+                            mimas_weights *ws)
+{
+    const mimas_weight *wt = dp->wt;
+    double reach = mimas_weight_reach(wt);
+    int lo[3], hi[3];
+    if (!candidate_box(dp, x, reach, lo, hi))
+        return MIMAS_OK;
+    int len[3];
+    for (int d = 0; d < 3; d++)
+        len[d] = hi[d] - lo[d] + 1;
+    if (reserve(ws, (size_t)len[0] * len[1] * len[2]))
+        return MIMAS_EIO;
+    /* factors, squared offsets and gradient factors -(c - x)/w^2, per direction */
+    double stack[3][3][64], *e[3], *q[3], *gf[3];
+    double *heap = NULL;
+    int total = len[0] + len[1] + len[2];
+    if (len[0] > 64 || len[1] > 64 || len[2] > 64) {
+        heap = malloc(3 * (size_t)total * sizeof *heap);
+        if (!heap)
+            return MIMAS_EIO;
+    }
+    for (int d = 0, off = 0; d < 3; d++) {
+        e[d] = heap ? heap + off : stack[d][0];
+        q[d] = heap ? heap + total + off : stack[d][1];
+        gf[d] = heap ? heap + 2 * total + off : stack[d][2];
+        off += len[d];
+        for (int i = 0; i < len[d]; i++) {
+            double dd = centre(dp, d, lo[d] + i) - x[d];
+            q[d][i] = dd * dd;
+            gf[d][i] = -2.0 * wt->inv2w2 * dd;
+        }
+        gauss_row(dp, d, lo[d], len[d], x[d], wt->inv2w2, e[d], 1);
+    }
+    const mimas_grid *g = dp->grid;
+    double coef = wt->coef, sh = coef * wt->shift, R2 = wt->reach2;
+    for (int k = 0; k < len[2]; k++)
+        for (int j = 0; j < len[1]; j++) {
+            double qyz = q[1][j] + q[2][k];
+            if (qyz >= R2)
+                continue;
+            double eyz = coef * e[1][j] * e[2][k];
+            size_t row = (size_t)lo[0] + (size_t)g->n[0] * ((size_t)(lo[1] + j) +
+                                                            (size_t)g->n[1] * (size_t)(lo[2] + k));
+            for (int i = 0; i < len[0]; i++) {
+                if (q[0][i] + qyz >= R2)
+                    continue;
+                double v = e[0][i] * eyz;
+                if (with_grad)
+                    put_grad(ws, row + (size_t)i, v - sh, v * gf[0][i], v * gf[1][j],
+                             v * gf[2][k]);
+                else
+                    put(ws, row + (size_t)i, v - sh);
+            }
+        }
+    free(heap);
+    ws->has_grad = with_grad;
+    return MIMAS_OK;
+}
+
+/* A kernel on any grid, cell by cell: the kernel at the cell centre, its
+ * marginal over the directions not gridded, or its azimuthal average. */
+static double kernel_cell(const mimas_deposit *dp, const int idx[3], const double lo[3],
+                          const double hi[3], const double c[3], const cell_object *o,
+                          double *gr)
+{
+    (void)idx, (void)lo, (void)hi;
+    const mimas_grid *g = dp->grid;
+    const mimas_weight *wt = dp->wt;
+    const double *x = o->x, *a = o->a;
+    double v;
+    if (g->kind == MIMAS_GRID_CARTESIAN) {
+        double d[3], gm[3];
+        for (int k = 0; k < dp->dims; k++)
+            d[k] = c[dp->gdir[k]] - x[dp->gdir[k]];
+        v = mimas_kernel_marginal(wt, dp->dims, d, gr ? gm : NULL);
+        for (int k = 0; gr && k < dp->dims; k++)
+            gr[dp->gdir[k]] = gm[k];
+    } else if (!g->gridded[1]) {
+        double gg[2];
+        v = mimas_kernel_ring(wt, dp->dims, c[0], hypot(a[0], a[1]), c[2] - a[2],
+                              gr ? gg : NULL);
+        if (gr) {
+            gr[0] = gg[0];
+            gr[2] = dp->dims == 3 ? gg[1] : 0.0;
+        }
+    } else {
+        /* phi cells: at the cell centre, the gradient in the centre's
+         * (r, phi, z) components */
+        double cs = cos(c[1]), sn = sin(c[1]), gc[3] = {0, 0, 0};
+        double d[3] = {c[0] * cs - a[0], c[0] * sn - a[1], c[2] - a[2]};
+        v = mimas_kernel_marginal(wt, dp->dims, d, gr ? gc : NULL);
+        if (gr) {
+            gr[0] = cs * gc[0] + sn * gc[1];
+            gr[1] = -sn * gc[0] + cs * gc[1];
+            gr[2] = dp->dims == 3 ? gc[2] : 0.0;
+        }
+    }
+    return v;
+}
+
+/* A kernel on any grid, cell by cell: the kernel at the cell centre, its
+ * marginal over the directions not gridded, or its azimuthal average. */
+static int kernel_sphere(const mimas_deposit *dp, const double x[3], const double a[3],
+                         int with_grad, mimas_weights *ws)
+{
+    const mimas_grid *g = dp->grid;
+    const mimas_weight *wt = dp->wt;
+    if (g->kind == MIMAS_GRID_CARTESIAN && dp->dims == 3 && wt->kind != MIMAS_WEIGHT_LUCY)
+        return gauss_sphere_xyz(dp, x, with_grad, ws);
+    int lo[3], hi[3];
+    if (!candidate_box(dp, a, mimas_weight_reach(wt), lo, hi))
+        return MIMAS_OK;
+    cell_object o = {x, a, NULL, NULL, 0, 0};
+    return each_cell(dp, lo, hi, kernel_cell, &o, with_grad, dp->inv_extent, ws);
+}
+
+/* ---- bins: particles ---------------------------------------------------------------- */
+
+static double bins_cell(const mimas_deposit *dp, const int idx[3], const double lo[3],
+                        const double hi[3], const double c[3], const cell_object *o,
+                        double *gr)
+{
+    (void)idx, (void)c, (void)gr;
+    double ov = dp->grid->kind == MIMAS_GRID_CARTESIAN
+                    ? overlap_sphere_box(o->x, o->R, lo, hi)
+                    : overlap_sphere_cylcell(o->a, o->R, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]);
+    return ov / (o->vol * cell_volume(dp, lo, hi));
+}
+
+static int bins_sphere(const mimas_deposit *dp, const double x[3], const double a[3], double R,
+                       mimas_weights *ws)
+{
+    int lo[3], hi[3];
+    if (!candidate_box(dp, a, R, lo, hi))
+        return MIMAS_OK;
+    cell_object o = {x, a, NULL, NULL, R, 4.0 / 3.0 * M_PI * R * R * R};
+    return each_cell(dp, lo, hi, bins_cell, &o, 0, 1.0, ws);
+}
+
+int mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, int with_grad,
+                         mimas_weights *ws)
+{
+    const mimas_grid *g = dp->grid;
+    ws->has_grad = 0;
     if (dp->none) {
-        fn(user, 0, 1.0 / dp->box_volume, NULL);
-        return;
+        if (reserve(ws, 1))
+            return MIMAS_EIO;
+        put(ws, 0, 1.0 / dp->box_volume);
+        return MIMAS_OK;
     }
     int point = dp->wt->kind == MIMAS_WEIGHT_BINS_CENTER ||
                 (dp->wt->kind == MIMAS_WEIGHT_BINS && !(R > 0));
-    double reach = dp->wt->kind >= MIMAS_WEIGHT_GAUSS ? mimas_weight_reach(dp->wt) : R;
+    double reach = dp->kernel ? mimas_weight_reach(dp->wt) : R;
     double blo[3] = {x[0] - reach, x[1] - reach, x[2] - reach};
     double bhi[3] = {x[0] + reach, x[1] + reach, x[2] + reach};
-    for (int s = 0; s < dp->nshift; s++) {
+    int rc = MIMAS_OK;
+    for (int s = 0; s < dp->nshift && !rc; s++) {
         if (!image_reaches(dp, s, blo, bhi))
             continue;
         double xs[3] = {x[0] + dp->shift[s][0], x[1] + dp->shift[s][1], x[2] + dp->shift[s][2]};
@@ -280,82 +543,286 @@ void mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, 
             double q[3];
             size_t cell;
             grid_coords(g, a, q);
-            if (cell_of(g, dp->h, q, &cell))
-                fn(user, cell,
-                   1.0 / (g->kind == MIMAS_GRID_CARTESIAN ? dp->cart_volume
-                                                          : mimas_grid_cell_volume(g, cell)),
-                   NULL);
+            if (cell_of(g, dp->h, q, &cell)) {
+                if (reserve(ws, 1))
+                    return MIMAS_EIO;
+                put(ws, cell, 1.0 / (g->kind == MIMAS_GRID_CARTESIAN
+                                         ? dp->cart_volume
+                                         : mimas_grid_cell_volume(g, cell)));
+            }
             continue;
         }
-        sphere_ctx ctx = {xs, a, R, fn, user};
-        candidate_cells(dp, a, reach, visit_sphere, &ctx);
+        rc = dp->kernel ? kernel_sphere(dp, xs, a, with_grad, ws) : bins_sphere(dp, xs, a, R, ws);
     }
+    return rc;
 }
 
-typedef struct segment_ctx {
-    const double *a, *b;     /* Cartesian (for box cells and the Gaussian) */
-    const double *aa, *ab;   /* axis frame (cylindrical cells) */
-    deposit_fn fn;
-    void *user;
-} segment_ctx;
+/* ---- segments ------------------------------------------------------------------------ */
 
-static void visit_segment(const mimas_deposit *dp, size_t cell, const int idx[3], void *ctx)
+/* The azimuthal average along the segment from a to b (axis frame) at the ring
+ * (r, z) by Gauss-Legendre, with 4, 8 or 16 points for segments up to w/2, 2w
+ * or longer (the kernel varies on the scale w; Lucy's on c/3). */
+static double ring_segment(const mimas_deposit *dp, double r, double z, const double a[3],
+                           const double b[3])
 {
-    segment_ctx *s = ctx;
-    const mimas_grid *g = dp->grid;
-    double lo[3], hi[3], c[3], w;
-    cell_geometry(dp, idx, lo, hi, c);
-    if (dp->wt->kind >= MIMAS_WEIGHT_GAUSS) {
-        double p[3];
-        if (g->kind == MIMAS_GRID_CARTESIAN)
-            memcpy(p, c, sizeof p);
-        else {
-            p[0] = c[0] * cos(c[1]);
-            p[1] = c[0] * sin(c[1]);
-            p[2] = c[2];
-        }
-        const double *a = g->kind == MIMAS_GRID_CARTESIAN ? s->a : s->aa;
-        const double *b = g->kind == MIMAS_GRID_CARTESIAN ? s->b : s->ab;
-        if (g->kind == MIMAS_GRID_CYLINDRICAL && !g->gridded[1]) {
-            /* the azimuthal average along the segment by Gauss-Legendre, with
-             * 4, 8 or 16 points for segments up to w/2, 2w or longer (the
-             * kernel varies on the scale w) */
-            double len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
-                              (b[2] - a[2]) * (b[2] - a[2]));
-            double scale = dp->wt->kind == MIMAS_WEIGHT_LUCY ? dp->wt->w / 3.0 : dp->wt->w;
-            int half = len <= 0.5 * scale ? 2 : (len <= 2.0 * scale ? 4 : 8);
-            const double *xs = half == 2 ? gl4_x : (half == 4 ? gl8_x : gl_x);
-            const double *ws = half == 2 ? gl4_w : (half == 4 ? gl8_w : gl_w);
-            w = 0.0;
-            for (int k = 0; k < half; k++)
-                for (int sgn = -1; sgn <= 1; sgn += 2) {
-                    double t = 0.5 * (1.0 + sgn * xs[k]), x[3], gr[3];
-                    for (int m = 0; m < 3; m++)
-                        x[m] = a[m] + t * (b[m] - a[m]);
-                    w += 0.5 * ws[k] * ring_kernel(dp->wt, c[0], c[2], x, gr);
-                }
-        } else {
-            double d[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
-            double br[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-            w = mimas_kernel_line(dp->wt, d, br);
-        }
-    } else {
-        double f = g->kind == MIMAS_GRID_CARTESIAN
-                       ? segment_fraction_box(s->a, s->b, lo, hi)
-                       : segment_fraction_cylcell(s->aa, s->ab, lo[0], hi[0], lo[1], hi[1], lo[2],
-                                                  hi[2]);
-        w = f / cell_volume(dp, lo, hi);
+    const mimas_weight *wt = dp->wt;
+    double len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+                      (b[2] - a[2]) * (b[2] - a[2]));
+    double scale = wt->kind == MIMAS_WEIGHT_LUCY ? wt->w / 3.0 : wt->w;
+    int n = len <= 0.5 * scale ? 4 : (len <= 2.0 * scale ? 8 : 16);
+    const double *xs = n == 4 ? gl4_x : (n == 8 ? gl8_x : gl16_x);
+    const double *wsg = n == 4 ? gl4_w : (n == 8 ? gl8_w : gl16_w);
+    double sum = 0.0;
+    for (int k = 0; k < n; k++) {
+        double t, wgt, p[3];
+        gl_node(xs, wsg, n, k, 0.0, 1.0, &t, &wgt);
+        for (int m = 0; m < 3; m++)
+            p[m] = a[m] + t * (b[m] - a[m]);
+        sum += wgt * mimas_kernel_ring(wt, dp->dims, r, hypot(p[0], p[1]), z - p[2], NULL);
     }
-    if (w != 0.0)
-        s->fn(s->user, cell, w, NULL);
+    return sum;
+}
+
+/* The Gaussian's line integral on a Cartesian x-y-z grid, exact, in two kinds of
+ * cell.  Where both ends of the segment lie within the cutoff of the cell centre
+ * the whole segment counts (the cut sphere is convex): psi is the uncut line
+ * integral, an 8-point Gauss-Legendre rule per piece of length <= w, each node a
+ * separable product of 1-D factors (the rule is exact to rounding for a Gaussian
+ * over at most one width: 3e-16).  Elsewhere near the segment the chord inside
+ * the sphere is integrated in closed form (mimas_gauss_line). */
+/* The line integral where the cut sphere about the cell centre cuts the segment
+ * (one end inside, the other outside, or both outside and the segment crossing the
+ * sphere): with t the foot of the perpendicular along the branch from a, h^2 = e - t^2
+ * its distance^2, c = sqrt(R^2 - h^2) the chord's half-length and G(x) = e^{x^2/2w^2}
+ * erf(x/sqrt2 w),
+ *   e^{-h^2/2w^2} erf(c/sqrt2 w) = e^{-C^2/2} G(c),
+ *   e^{-h^2/2w^2} erf(t/sqrt2 w) = e^{-|r - a|^2/2w^2} G(t)  (and the same about b),
+ * so psi = coef sqrt(pi/2) w/len [e^{-C^2/2} G(c) + e^{-|r-a|^2/2w^2} G(t)] for the
+ * chord [0, t + c], the mirror image for [t - c, len], 2 e^{-C^2/2} G(c) for
+ * [t - c, t + c]: G from the table, the exponentials separable. */
+static double shell_cell(const mimas_deposit *dp, int a_in, int b_in, double t, double e,
+                         double len, double ea, double eb)
+{
+    const mimas_weight *wt = dp->wt;
+    double R2 = wt->reach2, h2 = e - t * t;
+    if (h2 < 0)
+        h2 = 0;
+    if (h2 >= R2)
+        return 0.0;
+    double c = sqrt(R2 - h2), k = 1.0 / (M_SQRT2 * wt->w), chord, v;
+    double gc = wt->tail * gtab_eval(dp, c * k);
+    if (a_in) {
+        v = gc + ea * gtab_eval(dp, t * k);
+        chord = t + c;
+    } else if (b_in) {
+        v = gc + eb * gtab_eval(dp, (len - t) * k);
+        chord = len - t + c;
+    } else if (t > 0 && t < len) {
+        v = 2.0 * gc;
+        chord = 2.0 * c;
+    } else {
+        return 0.0;
+    }
+    return wt->coef * (sqrt(M_PI / 2.0) * wt->w * v - wt->shift * chord) / len;
+}
+
+enum { SEG_MAXNODE = 64 };
+
+static int gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const double b[3],
+                             mimas_weights *ws)
+{
+    const mimas_weight *wt = dp->wt;
+    const mimas_grid *g = dp->grid;
+    double bv[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double l2 = bv[0] * bv[0] + bv[1] * bv[1] + bv[2] * bv[2], len = sqrt(l2);
+    double R = mimas_weight_reach(wt), R2 = wt->reach2;
+    double mid[3] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
+    int lo[3], hi[3];
+    if (!candidate_box(dp, mid, 0.5 * len + R, lo, hi))
+        return MIMAS_OK;
+    int pieces = (int)ceil(len / wt->w);
+    if (pieces < 1)
+        pieces = 1;
+    /* nodes per piece: 6 are exact to rounding up to w/2, 8 up to w */
+    int per = len <= 0.5 * wt->w ? 6 : 8;
+    int nq = per * pieces;
+    if (nq > SEG_MAXNODE)
+        return -1; /* a long segment: cell by cell */
+    int n[3];
+    size_t total = 0;
+    for (int d = 0; d < 3; d++) {
+        n[d] = hi[d] - lo[d] + 1;
+        total += (size_t)n[d];
+    }
+    if (reserve(ws, (size_t)n[0] * n[1] * n[2]))
+        return MIMAS_EIO;
+    /* per direction: offsets from a, squared offsets from a and b, the Gaussian factors
+     * about a and b, and the nodes' factors */
+    double *buf = malloc(((size_t)5 + (size_t)nq) * total * sizeof *buf);
+    if (!buf)
+        return MIMAS_EIO;
+    double *off[3], *qa[3], *qb[3], *ea[3], *eb[3], *ex[3];
+    double sq[SEG_MAXNODE], wq[SEG_MAXNODE];
+    for (int p = 0, k = 0; p < pieces; p++)
+        for (int m = 0; m < per; m++, k++) {
+            gl_node(per == 6 ? gl6_x : gl8_x, per == 6 ? gl6_w : gl8_w, per, m,
+                    (double)p / pieces, (double)(p + 1) / pieces, &sq[k], &wq[k]);
+            wq[k] *= wt->coef;
+        }
+    for (int d = 0, o = 0; d < 3; d++) {
+        off[d] = buf + o;
+        qa[d] = buf + total + o;
+        qb[d] = buf + 2 * total + o;
+        ea[d] = buf + 3 * total + o;
+        eb[d] = buf + 4 * total + o;
+        ex[d] = buf + 5 * total + (size_t)nq * o;
+        for (int i = 0; i < n[d]; i++) {
+            double c = centre(dp, d, lo[d] + i), da = c - a[d], db = c - b[d];
+            off[d][i] = da;
+            qa[d][i] = da * da;
+            qb[d][i] = db * db;
+        }
+        gauss_row(dp, d, lo[d], n[d], a[d], wt->inv2w2, ea[d], 1);
+        gauss_row(dp, d, lo[d], n[d], b[d], wt->inv2w2, eb[d], 1);
+        /* node-major: ex[d][k n_d + i] */
+        for (int k = 0; k < nq; k++)
+            gauss_row(dp, d, lo[d], n[d], a[d] + sq[k] * bv[d], wt->inv2w2,
+                      ex[d] + (size_t)k * n[d], 1);
+        o += n[d];
+    }
+    double eyz[SEG_MAXNODE], sh = wt->coef * wt->shift;
+    double *vrow = malloc((size_t)n[0] * sizeof *vrow);
+    if (!vrow) {
+        free(buf);
+        return MIMAS_EIO;
+    }
+    for (int kz = 0; kz < n[2]; kz++)
+        for (int j = 0; j < n[1]; j++) {
+            double qay = qa[1][j] + qa[2][kz], qby = qb[1][j] + qb[2][kz];
+            double tyz = off[1][j] * bv[1] + off[2][kz] * bv[2];
+            double oyz = off[1][j] * off[1][j] + off[2][kz] * off[2][kz];
+            /* the row (a line along x) is out of reach when the segment's projection
+             * on the y-z plane stays R or more from the row's (y, z) */
+            double pyz = bv[1] * bv[1] + bv[2] * bv[2];
+            double ty = pyz > 0 ? tyz / pyz : 0.0;
+            ty = ty < 0 ? 0.0 : (ty > 1 ? 1.0 : ty);
+            double ry = off[1][j] - ty * bv[1], rz = off[2][kz] - ty * bv[2];
+            if (ry * ry + rz * rz >= R2)
+                continue;
+            for (int k = 0; k < nq; k++)
+                eyz[k] = wq[k] * ex[1][(size_t)k * n[1] + j] * ex[2][(size_t)k * n[2] + kz];
+            /* the uncut line integral along the row: a sum of separable products */
+            for (int i = 0; i < n[0]; i++)
+                vrow[i] = -sh;
+            for (int k = 0; k < nq; k++) {
+                const double *exk = ex[0] + (size_t)k * n[0];
+                double f = eyz[k];
+                for (int i = 0; i < n[0]; i++)
+                    vrow[i] += exk[i] * f;
+            }
+            size_t row = (size_t)lo[0] + (size_t)g->n[0] * ((size_t)(lo[1] + j) +
+                                                            (size_t)g->n[1] * (size_t)(lo[2] + kz));
+            for (int i = 0; i < n[0]; i++) {
+                double v;
+                if (qa[0][i] + qay < R2 && qb[0][i] + qby < R2) {
+                    v = vrow[i]; /* the whole segment within the cutoff */
+                } else {
+                    /* nearest point of the segment: a, b or the foot of the perpendicular */
+                    double t = off[0][i] * bv[0] + tyz, dist2;
+                    double e = off[0][i] * off[0][i] + oyz;
+                    if (t <= 0)
+                        dist2 = qa[0][i] + qay;
+                    else if (t >= l2)
+                        dist2 = qb[0][i] + qby;
+                    else
+                        dist2 = e - t * t / l2;
+                    if (dist2 >= R2)
+                        continue;
+                    if (dp->gtab_ok) {
+                        v = shell_cell(dp, qa[0][i] + qay < R2, qb[0][i] + qby < R2, t / len,
+                                       e, len, ea[0][i] * ea[1][j] * ea[2][kz],
+                                       eb[0][i] * eb[1][j] * eb[2][kz]);
+                    } else {
+                        double d[3] = {off[0][i], centre(dp, 1, lo[1] + j) - a[1],
+                                       centre(dp, 2, lo[2] + kz) - a[2]};
+                        v = mimas_gauss_line(wt, d, bv);
+                    }
+                }
+                if (v != 0.0)
+                    put(ws, row + (size_t)i, v);
+            }
+        }
+    free(vrow);
+    free(buf);
+    return MIMAS_OK;
+}
+
+/* A kernel's line integral at a cell: the object's Cartesian x -> b and axis-frame
+ * a -> ab. */
+static double kernel_segment_cell(const mimas_deposit *dp, const int idx[3], const double lo[3],
+                                  const double hi[3], const double c[3], const cell_object *o,
+                                  double *gr)
+{
+    (void)idx, (void)lo, (void)hi, (void)gr;
+    const mimas_grid *g = dp->grid;
+    const double *a = o->x, *b = o->b, *aa = o->a, *ab = o->ab;
+    if (g->kind == MIMAS_GRID_CARTESIAN) {
+        double d[3], br[3];
+        for (int k = 0; k < dp->dims; k++) {
+            int m = dp->gdir[k];
+            d[k] = c[m] - a[m];
+            br[k] = b[m] - a[m];
+        }
+        return mimas_kernel_marginal_line(dp->wt, dp->dims, d, br);
+    }
+    if (!g->gridded[1])
+        return ring_segment(dp, c[0], c[2], aa, ab);
+    double p[3] = {c[0] * cos(c[1]), c[0] * sin(c[1]), c[2]};
+    double d[3] = {p[0] - aa[0], p[1] - aa[1], p[2] - aa[2]};
+    double br[3] = {ab[0] - aa[0], ab[1] - aa[1], ab[2] - aa[2]};
+    return mimas_kernel_marginal_line(dp->wt, dp->dims, d, br);
+}
+
+static double bins_segment_cell(const mimas_deposit *dp, const int idx[3], const double lo[3],
+                                const double hi[3], const double c[3], const cell_object *o,
+                                double *gr)
+{
+    (void)idx, (void)c, (void)gr;
+    double f = dp->grid->kind == MIMAS_GRID_CARTESIAN
+                   ? segment_fraction_box(o->x, o->b, lo, hi)
+                   : segment_fraction_cylcell(o->a, o->ab, lo[0], hi[0], lo[1], hi[1], lo[2],
+                                              hi[2]);
+    return f / cell_volume(dp, lo, hi);
+}
+
+/* The cells of a segment by the cell search: within reach of the midpoint am. */
+static int segment_cells(const mimas_deposit *dp, const double a[3], const double b[3],
+                         const double aa[3], const double ab[3], const double am[3],
+                         double reach, mimas_weights *ws)
+{
+    const mimas_grid *g = dp->grid;
+    if (dp->kernel && g->kind == MIMAS_GRID_CARTESIAN && dp->dims == 3 &&
+        dp->wt->kind != MIMAS_WEIGHT_LUCY) {
+        int rc = gauss_segment_xyz(dp, a, b, ws);
+        if (rc >= 0)
+            return rc;
+    }
+    int lo[3], hi[3];
+    if (!candidate_box(dp, am, reach, lo, hi))
+        return MIMAS_OK;
+    cell_object o = {a, aa, b, ab, 0, 0};
+    return dp->kernel ? each_cell(dp, lo, hi, kernel_segment_cell, &o, 0, dp->inv_extent, ws)
+                      : each_cell(dp, lo, hi, bins_segment_cell, &o, 0, 1.0, ws);
 }
 
 /* Bins on a Cartesian grid: walk the segment through the cells.  The
  * parameters where it crosses grid planes split it into pieces that each lie
  * in one cell (the cell of the piece's midpoint), so every piece gets its
- * exact length fraction and the pieces add up to the part on the grid. */
+ * exact length fraction and the pieces add up to the part on the grid.
+ * Returns 0 for a long segment (the cell search does it), -1 when out of
+ * memory, 1 when done. */
 static int walk_segment(const mimas_deposit *dp, const double a[3], const double b[3],
-                        deposit_fn fn, void *user)
+                        mimas_weights *ws)
 {
     const mimas_grid *g = dp->grid;
     double t[64];
@@ -371,7 +838,7 @@ static int walk_segment(const mimas_deposit *dp, const double a[3], const double
             if (x >= hi || x > g->hi[d])
                 break;
             if (nt >= 62)
-                return 0; /* a long segment: the cell search does it */
+                return 0;
             if (x > lo)
                 t[nt++] = (x - a[d]) / len;
         }
@@ -384,6 +851,8 @@ static int walk_segment(const mimas_deposit *dp, const double a[3], const double
             t[j] = t[j - 1];
             t[j - 1] = x;
         }
+    if (reserve(ws, (size_t)nt))
+        return -1;
     for (int i = 0; i + 1 < nt; i++) {
         double dt = t[i + 1] - t[i];
         if (!(dt > 0))
@@ -393,24 +862,26 @@ static int walk_segment(const mimas_deposit *dp, const double a[3], const double
             q[d] = a[d] + tm * (b[d] - a[d]);
         size_t cell;
         if (cell_of(g, dp->h, q, &cell))
-            fn(user, cell, dt / dp->cart_volume, NULL);
+            put(ws, cell, dt / dp->cart_volume);
     }
     return 1;
 }
 
-void mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const double b[3],
-                           deposit_fn fn, void *user)
+int mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const double b[3],
+                          mimas_weights *ws)
 {
     const mimas_grid *g = dp->grid;
+    ws->has_grad = 0;
     if (dp->none) {
-        fn(user, 0, 1.0 / dp->box_volume, NULL);
-        return;
+        if (reserve(ws, 1))
+            return MIMAS_EIO;
+        put(ws, 0, 1.0 / dp->box_volume);
+        return MIMAS_OK;
     }
     if (dp->wt->kind == MIMAS_WEIGHT_BINS_CENTER) {
         /* the cell of the segment's midpoint */
         double m[3] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
-        mimas_deposit_sphere(dp, m, 0.0, fn, user);
-        return;
+        return mimas_deposit_sphere(dp, m, 0.0, 0, ws);
     }
     double half = 0.5 * sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
                              (b[2] - a[2]) * (b[2] - a[2]));
@@ -421,7 +892,8 @@ void mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const dou
         blo[d] = m - reach;
         bhi[d] = m + reach;
     }
-    for (int s = 0; s < dp->nshift; s++) {
+    int rc = MIMAS_OK;
+    for (int s = 0; s < dp->nshift && !rc; s++) {
         if (!image_reaches(dp, s, blo, bhi))
             continue;
         double as[3], bs[3], aa[3], ab[3], mid[3], am[3];
@@ -433,10 +905,14 @@ void mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const dou
         mimas_grid_to_axis(g, as, aa);
         mimas_grid_to_axis(g, bs, ab);
         mimas_grid_to_axis(g, mid, am);
-        if (dp->wt->kind == MIMAS_WEIGHT_BINS && g->kind == MIMAS_GRID_CARTESIAN &&
-            walk_segment(dp, as, bs, fn, user))
-            continue;
-        segment_ctx ctx = {as, bs, aa, ab, fn, user};
-        candidate_cells(dp, am, reach, visit_segment, &ctx);
+        if (!dp->kernel && g->kind == MIMAS_GRID_CARTESIAN) {
+            int done = walk_segment(dp, as, bs, ws);
+            if (done < 0)
+                return MIMAS_EIO;
+            if (done)
+                continue;
+        }
+        rc = segment_cells(dp, as, bs, aa, ab, am, reach, ws);
     }
+    return rc;
 }

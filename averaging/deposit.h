@@ -1,9 +1,11 @@
 /* Where a particle, a point or a contact's branch segment goes on a grid, and
- * with which weight (PHYSICS 6): for each cell it touches, the callback gets
- * the cell and the weight per unit volume, so that summing weight times cell
+ * with which weight (docs/fields.md; docs/theory.md §6): the cells it touches
+ * and the weight per unit volume in each, so that summing weight times cell
  * volume over the cells gives 1 (bins) or the coarse-graining integral
- * (Gaussian).  Periodic boxes contribute through the images of the object
- * that reach the grid. */
+ * (kernels).  Kernels are integrated over the directions the grid does not
+ * resolve (their marginals; the azimuthal average on cylindrical grids
+ * without phi cells).  Periodic boxes contribute through the images of the
+ * object that reach the grid. */
 #ifndef MIMAS_DEPOSIT_H
 #define MIMAS_DEPOSIT_H
 
@@ -13,9 +15,19 @@
 #include "grid.h"
 #include "weight.h"
 
-/* grad: the gradient of the weight with respect to the field point (for the
- * Gaussian, at the cell centre), or NULL where the weight has none (bins) */
-typedef void (*deposit_fn)(void *user, size_t cell, double weight, const double *grad);
+/* The weights of one object: n cells with their weights and, for kernels
+ * that have one (particles only), the weight's gradient with respect to the
+ * field point (grad[3k..3k+2], in the grid's x y z or physical r phi z
+ * components).  Reused from object to object; grow as needed. */
+typedef struct mimas_weights {
+    size_t n, cap;
+    size_t *cell;
+    double *w;
+    double *grad;
+    int has_grad;   /* set by the deposit: grad holds the gradients */
+} mimas_weights;
+
+void mimas_weights_free(mimas_weights *ws);
 
 typedef struct mimas_deposit {
     const mimas_grid *grid;
@@ -26,16 +38,26 @@ typedef struct mimas_deposit {
     double shift[27][3];
     double h[3];           /* cell sizes of the grid */
     double cart_volume;    /* cell volume of a Cartesian grid */
+    int kernel;            /* a kernel weight (Gaussian, Lucy, Shepard) */
+    int dims;              /* kernels: the dimension the kernel is resolved in (1-3) */
+    int gdir[3];           /* Cartesian: the gridded directions, dims of them */
+    double inv_extent;     /* kernels: 1 / the box's extent along the directions
+                            * they are integrated over (Cartesian; cylindrical z) */
+    int gtab_ok;           /* the Gaussian on x-y-z grids: gtab covers its cutoff */
+    double gtab[64][13];   /* e^{u^2} erf(u) on [0, 4]: Taylor coefficients about the
+                            * centres of 64 intervals (deposit.c) */
 } mimas_deposit;
 
 void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,
                         const mimas_box *box, int grid_none);
-/* A sphere of radius R at x (R = 0: a point). */
-void mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, deposit_fn fn,
-                          void *user);
+/* A sphere of radius R at x (R = 0: a point); with_grad: kernels also give
+ * their gradient.  Appends to ws (ws->n = 0 first for a new object).
+ * Returns MIMAS_OK or MIMAS_EIO when out of memory. */
+int mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, int with_grad,
+                         mimas_weights *ws);
 /* The segment from a to b (a contact's branch from r_j to r_i, or from the
- * contact point to a particle centre for wall contacts). */
-void mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const double b[3],
-                           deposit_fn fn, void *user);
+ * contact point to a particle centre for wall contacts); no gradients. */
+int mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const double b[3],
+                          mimas_weights *ws);
 
 #endif

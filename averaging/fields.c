@@ -31,7 +31,8 @@ static const mimas_field_desc fields[NFIELDS] = {
     TENSOR("cstress", "Pa", "contact stress sum_c f_ij (x) (r_i - r_j) psi_ij (symmetric part)"),
     {"p", NULL, "Pa", "pressure tr(stress)/3"},
     {"tau", NULL, "Pa", "shear stress sqrt(s:s/2), s the deviator of stress"},
-    {"", "tau_phi", "Pa", "shear stress sqrt(stress_rphi^2 + stress_phiz^2) (000 eq. 2.15)"},
+    {"", "tau_phi", "Pa",
+     "shear stress sqrt(stress_rphi^2 + stress_phiz^2) (Uhlig 2012, eq. 2.15)"},
     {"mu", NULL, "1", "stress ratio tau/p (undefined where p <= 0)"},
     {"T", NULL, "J", "granular temperature tr(kstress)/(3 n) (undefined where n = 0)"},
     {"Z", NULL, "1", "coordination number sum_i c_i phi / sum_i phi"},
@@ -43,7 +44,7 @@ static const mimas_field_desc fields[NFIELDS] = {
     {"wall_force_z", "wall_force_z", "N m-3", "wall force density"},
     {"shear_rate", NULL, "s-1", "sqrt(2 D':D'), D' the deviator of D = (grad V + grad V^T)/2"},
     {"", "shear_rate_luding", "s-1",
-     "0.5 sqrt((dv_phi/dr - v_phi/r)^2 + (dv_phi/dz)^2) (000 eq. 2.13)"},
+     "0.5 sqrt((dv_phi/dr - v_phi/r)^2 + (dv_phi/dz)^2) (Uhlig 2012, eq. 2.13)"},
     {"eta", NULL, "Pa s", "viscosity tau/shear_rate (undefined where shear_rate = 0)"},
     {"I", NULL, "1", "inertial number shear_rate d sqrt(rho_p/p), rho_p = rho/nu, d the "
                      "cell's d or --diameter (undefined where p <= 0)"},
@@ -94,7 +95,7 @@ static void stress_measures(int cylindrical, double *out)
     out[F_MU] = p > 0 ? out[F_TAU] / p : NAN;
 }
 
-/* The Voronoi fields (PHYSICS 6, 002 Sec. 2.2): densities over the cells'
+/* The Voronoi fields (docs/theory.md §6; Bierwisch 2009, Sec. 2.2): densities over the cells'
  * volume, the stress the cell-volume weighted mean of the per-particle
  * stresses; no kinetic/contact split, fabric, wall force or temperature. */
 static void voronoi_fields(const double *S, double *out)
@@ -126,7 +127,7 @@ void mimas_fields_derive(const double *S, int cylindrical, double r, mimas_field
         out[F_V + k] = V[k] = ratio(S[S_P + k], rho);
     out[F_OMEGA] = cylindrical ? ratio(V[1], r) : NAN;
     /* kinetic stress: momentum flux minus rho V (x) V (fluctuations about the
-     * local mean, PHYSICS 6); zero where there is no mass */
+     * local mean, docs/theory.md §6); zero where there is no mass */
     double K[9];
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++)

@@ -1,35 +1,40 @@
 /* The fields of mimas average: primary sums per cell (what is deposited and
  * time-averaged) and the fields derived from them, described once in a table
  * (name, unit, meaning) that feeds the TSV header and docs/fields.md
- * (DESIGN.md: libvips-style description).  PHYSICS 1 and 6 give the
- * definitions; stress is compression-positive. */
+ * (libvips-style: one description drives every output).  docs/theory.md §1
+ * and §6 give the definitions; stress is compression-positive. */
 #ifndef MIMAS_FIELDS_H
 #define MIMAS_FIELDS_H
 
 #include <stddef.h>
 
-/* primary sums per cell, each already divided by volume (a density) */
+/* primary sums per cell, each already divided by volume (a density); a
+ * particle adds the block S_N..S_K (and the gradients S_G..) in one sweep, a
+ * contact the block S_C..S_F */
 enum {
     S_N,            /* sum phi: number density */
     S_M,            /* sum m phi */
     S_V,            /* sum V_p phi: solid fraction */
-    S_P,            /* 3: sum m v phi */
-    S_K = S_P + 3,  /* 9: sum m v (x) v phi */
-    S_C = S_K + 9,  /* 9: sum f (x) b psi, contact stress */
-    S_F = S_C + 9,  /* 9: sum n (x) n psi, fabric */
-    S_Z = S_F + 9,  /* sum c_p phi, c_p = contacts of particle p */
+    S_D,            /* sum 2 R phi: diameters */
+    S_Z,            /* sum c_p phi, c_p = contacts of particle p */
     S_ZN,           /* the same over particles with c_p >= 2 */
     S_NN,           /* sum phi over particles with c_p >= 2 */
-    S_D,            /* sum 2 R phi: diameters */
-    S_W,            /* 3: sum f_wall delta(r - c): wall force density */
-    S_GM = S_W + 3, /* 3: sum m grad phi (Gaussian weights only) */
-    S_GP = S_GM + 3,/* 9: sum m v_a d_b phi (Gaussian weights only) */
-    S_U = S_GP + 9, /* 3: sum v phi, for Shepard's ratio of sums */
+    S_P,            /* 3: sum m v phi */
+    S_K = S_P + 3,  /* 9: sum m v (x) v phi */
+    S_PARTICLE_END = S_K + 9,
+    S_G = S_PARTICLE_END, /* 12: per direction b, sum m d_b phi and sum m v_a d_b phi
+                           * (kernels only): S_GM(b), S_GP(a, b) */
+    S_C = S_G + 12, /* 9: sum f (x) b psi, contact stress */
+    S_F = S_C + 9,  /* 9: sum n (x) n psi, fabric */
+    S_W = S_F + 9,  /* 3: sum f_wall delta(r - c): wall force density */
+    S_U = S_W + 3,  /* 3: sum v phi, for Shepard's ratio of sums */
     S_VC = S_U + 3, /* sum V_cell phi: Voronoi cell volumes (--weight voronoi) */
     S_VSC,          /* the same over particles with a stress */
     S_VS,           /* 9: sum V_cell sigma phi: per-particle Voronoi stresses */
     NSUMS = S_VS + 9
 };
+#define S_GM(b) (S_G + 4 * (b))             /* sum m d_b phi */
+#define S_GP(a, b) (S_G + 4 * (b) + 1 + (a)) /* sum m v_a d_b phi */
 
 /* How the derived fields come from the sums: densities per unit volume,
  * Shepard's ratio of sums (per-particle means only), or per-particle Voronoi
@@ -56,7 +61,7 @@ const char *mimas_field_name(size_t k, int cylindrical);
  * centre's radius (cylindrical grids).  Undefined values (velocity of an
  * empty cell, mu where p <= 0, ...) are NaN, as docs/fields.md says.  The
  * strain-rate columns are left NaN: they need the neighbouring cells
- * (mimas_fields_strain).  Shepard's ratio of sums (002 eq. 2.27) defines
+ * (mimas_fields_strain).  Shepard's ratio of sums (Bierwisch 2009, eq. 2.27) defines
  * only means of per-particle values (velocity as sum v phi / sum phi, Z, d,
  * the strain rates); the densities and stresses are NaN.  Voronoi: n, rho
  * and nu per total cell volume (nu = sum V_p / sum V_cell), the stress the

@@ -11,6 +11,8 @@
 
 #include "fields.h"
 #include "h5util.h"
+#include "output_xdmf.h"
+#include "xdmf.h"
 #include "outfile.h"
 #include "parameters_h5.h"
 
@@ -39,38 +41,6 @@ static void centres(const mimas_grid *g, int none, size_t cells, double *xyz)
         }
         memcpy(&xyz[3 * c], p, sizeof p);
     }
-}
-
-static int write_xdmf(const char *path, const char *h5name, const mimas_grid *g, int none,
-                      int cyl, const hsize_t dims[3])
-{
-    FILE *fp = fopen(path, "w");
-    if (!fp)
-        return -1;
-    fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
-                "  <Grid Name=\"mimas fields\" GridType=\"Uniform\">\n"
-                "   <Topology TopologyType=\"3DSMesh\" Dimensions=\"%llu %llu %llu\"/>\n"
-                "   <Geometry GeometryType=\"XYZ\">\n"
-                "    <DataItem Dimensions=\"%llu %llu %llu 3\" NumberType=\"Float\" "
-                "Precision=\"8\" Format=\"HDF\">%s:/grid/points</DataItem>\n   </Geometry>\n",
-            (unsigned long long)dims[0], (unsigned long long)dims[1],
-            (unsigned long long)dims[2], (unsigned long long)dims[0],
-            (unsigned long long)dims[1], (unsigned long long)dims[2], h5name);
-    for (size_t k = 0; k < mimas_fields_count(); k++) {
-        const char *name = mimas_field_name(k, cyl);
-        if (!name)
-            continue;
-        fprintf(fp, "   <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n"
-                    "    <DataItem Dimensions=\"%llu %llu %llu\" NumberType=\"Float\" "
-                    "Precision=\"8\" Format=\"HDF\">%s:/fields/%s/mean</DataItem>\n"
-                    "   </Attribute>\n",
-                name, (unsigned long long)dims[0], (unsigned long long)dims[1],
-                (unsigned long long)dims[2], h5name, name);
-    }
-    fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
-    (void)g;
-    (void)none;
-    return fclose(fp);
 }
 
 static int write_grid(hid_t file, const mimas_grid *g, int none, size_t cells)
@@ -109,14 +79,16 @@ static int write_grid(hid_t file, const mimas_grid *g, int none, size_t cells)
     hsize_t pd[4];
     dims_of(g, none, pd);
     pd[3] = 3;
-    rc |= h5_write_doubles(gg, "points", 4, pd, xyz, "m", "cell centres, Cartesian (for XDMF)");
+    rc |= h5_write_doubles(gg, "points", 4, pd, xyz, "m", "cell centres, Cartesian");
     free(xyz);
+    rc |= fields_write_corners(gg, g, none);
     H5Gclose(gg);
     return rc;
 }
 
 struct mimas_fields_file {
-    char path[4096], tmp[4200], xdmf[4096], xtmp[4300];
+    char path[4096], tmp[4200];
+    unsigned char want[128];   /* the fields to write */
     hid_t file;
     hid_t step, time;          /* /frames/step and /frames/time */
     hid_t *per;                /* /frames/<field>, one per field (or 0) */
@@ -124,23 +96,19 @@ struct mimas_fields_file {
     h5_quiet quiet;
 };
 
-int mimas_fields_open(mimas_fields_file **out, const char *path, mimas_error *err)
+int mimas_fields_open(mimas_fields_file **out, const char *path, const unsigned char *want,
+                      mimas_error *err)
 {
     *out = NULL;
-    if (mimas_path_is_special(path))
-        return mimas_error_set(err, MIMAS_EUSAGE, "%s: not a regular file (the field file is "
-                               "written under a temporary name and renamed into place)", path);
+    if (mimas_output_check(path, err))
+        return err->code;
     mimas_fields_file *ff = calloc(1, sizeof *ff);
     if (!ff)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
     snprintf(ff->path, sizeof ff->path, "%s", path);
     snprintf(ff->tmp, sizeof ff->tmp, "%s.tmp%ld", path, (long)getpid());
-    size_t len = strlen(path);
-    if (len > 3 && !strcmp(path + len - 3, ".h5"))
-        snprintf(ff->xdmf, sizeof ff->xdmf, "%.*s.xdmf", (int)(len - 3), path);
-    else
-        snprintf(ff->xdmf, sizeof ff->xdmf, "%s.xdmf", path);
-    snprintf(ff->xtmp, sizeof ff->xtmp, "%s.tmp%ld", ff->xdmf, (long)getpid());
+    for (size_t k = 0; k < mimas_fields_count() && k < sizeof ff->want; k++)
+        ff->want[k] = want ? want[k] : 1;
     h5_quiet_begin(&ff->quiet);
     ff->file = H5Fcreate(ff->tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     h5_quiet_end(&ff->quiet);
@@ -174,7 +142,6 @@ void mimas_fields_abort(mimas_fields_file *ff)
     H5Fclose(ff->file);
     h5_quiet_end(&ff->quiet);
     remove(ff->tmp);
-    remove(ff->xtmp);
     free(ff);
 }
 
@@ -235,10 +202,10 @@ int mimas_fields_append_frame(mimas_fields_file *ff, const mimas_average *frame,
         hsize_t d4[4] = {0, dims[0], dims[1], dims[2]}, c4[4] = {1, dims[0], dims[1], dims[2]};
         for (size_t k = 0; ff->per && k < nf; k++) {
             const char *name = mimas_field_name(k, cyl);
-            if (!name)
+            if (!name || !ff->want[k])
                 continue;
             ff->per[k] = h5_create_growing(gf, name, H5T_IEEE_F64LE, 4, 1, d4, c4, NULL, 1);
-            if (ff->per[k] < 0 || h5_attr_write_str(ff->per[k], "unit", mimas_field(k)->unit) ||
+            if (ff->per[k] < 0 || h5_attr_write_vlstr(ff->per[k], "unit", mimas_field(k)->unit) ||
                 h5_attr_write_str(ff->per[k], "definition", mimas_field(k)->meaning))
                 rc = 1;
         }
@@ -300,6 +267,11 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
     h5_quiet_begin(&q);
     hid_t file = ff->file;
     int rc = 0;
+    /* the times of the frames, for the per-frame sidecar */
+    size_t nframes = (size_t)ff->frames;
+    double *times = malloc((nframes ? nframes : 1) * sizeof *times);
+    rc |= !times || (nframes && H5Dread(ff->time, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL,
+                                        H5P_DEFAULT, times) < 0);
     close_frames(ff);
     {
         hid_t gm = H5Gcreate2(file, "/mimas", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -318,20 +290,24 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
         dims_of(g, none, dims);
         for (size_t k = 0; !rc && k < nf; k++) {
             const char *name = mimas_field_name(k, cyl);
-            if (!name)
+            if (!name || !ff->want[k])
                 continue;
             const mimas_field_desc *fd = mimas_field(k);
             hid_t one = H5Gcreate2(gf, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-            rc |= one < 0 || h5_attr_write_str(one, "unit", fd->unit) ||
+            rc |= one < 0 || h5_attr_write_vlstr(one, "unit", fd->unit) ||
                   h5_attr_write_str(one, "definition", fd->meaning);
             const double *src[3] = {mean, sd, count};
-            const char *what[3] = {"mean", "std", "count"};
-            const char *desc[3] = {"the field from the time-averaged sums",
+            const char *what[4] = {"mean", "std", "count", "sem"};
+            const char *desc[4] = {"the field from the time-averaged sums",
                                    "standard deviation of the per-frame field over frames",
-                                   "frames in which the field was defined"};
-            for (int m = 0; m < 3 && !rc; m++) {
-                for (size_t c = 0; c < cells; c++)
-                    col[c] = src[m][c * nf + k];
+                                   "frames in which the field was defined",
+                                   "standard error std/sqrt(count) (nan where count < 2)"};
+            for (int m = 0; m < 4 && !rc; m++) {
+                for (size_t c = 0; c < cells; c++) {
+                    size_t at = c * nf + k;
+                    col[c] = m < 3 ? src[m][at]
+                                   : count[at] > 1 ? sd[at] / sqrt(count[at]) : NAN;
+                }
                 rc |= h5_write_doubles(one, what[m], 3, dims, col, m == 2 ? NULL : fd->unit,
                                        desc[m]);
             }
@@ -365,19 +341,30 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
         }
         rc |= !full;
         free(full);
+        /* vectors and tensors of cylindrical grids in Cartesian components */
+        fields_group groups[16];
+        size_t ng = fields_xdmf_stored(g, none) ? fields_groups(cyl, ff->want, groups, 16) : 0;
+        if (!rc && ng)
+            rc |= fields_write_cartesian(file, g, groups, ng, mean, nf);
         rc |= H5Fclose(file) < 0;
-        const char *base = strrchr(ff->path, '/');
-        if (!rc)
-            rc |= write_xdmf(ff->xtmp, base ? base + 1 : ff->path, g, none, cyl, dims) != 0;
+        if (!rc && fields_write_xdmf(ff->path, g, none, ff->want, nframes, times, 1,
+                                     vor ? "stress" : "cstress", err))
+            rc = 2;
     }
     h5_quiet_end(&q);
-    free(mean), free(sd), free(count), free(col);
-    if (!rc && (rename(ff->tmp, ff->path) != 0 || rename(ff->xtmp, ff->xdmf) != 0))
+    free(mean), free(sd), free(count), free(col), free(times);
+    if (!rc && rename(ff->tmp, ff->path) != 0)
         rc = 1;
     if (rc) {
         remove(ff->tmp);
-        remove(ff->xtmp);
-        int code = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the field file", ff->path);
+        char side[4200];
+        mimas_xdmf_path(ff->path, NULL, side, sizeof side);
+        remove(side);
+        mimas_xdmf_path(ff->path, "-frames", side, sizeof side);
+        remove(side);
+        int code = rc == 2 ? MIMAS_EIO
+                           : mimas_error_set(err, MIMAS_EIO, "%s: cannot write the field file",
+                                             ff->path);
         free(ff);
         return code;
     }

@@ -1,6 +1,7 @@
 /* The field file of mimas average -o: HDF5 with every field's mean,
- * standard deviation over frames and frame count, its unit and definition,
- * the grid, provenance, and an XDMF sidecar that ParaView opens. */
+ * standard deviation over frames, frame count and standard error, its unit
+ * and definition, the grid, provenance, and the XDMF sidecars that
+ * ParaView opens (output_xdmf.c). */
 #ifndef MIMAS_OUTPUT_H5_H
 #define MIMAS_OUTPUT_H5_H
 
@@ -11,12 +12,16 @@
 #include "parameters.h"
 
 #define MIMAS_FIELDS_VERSION_MAJOR 1
-#define MIMAS_FIELDS_VERSION_MINOR 0
+#define MIMAS_FIELDS_VERSION_MINOR 1
 
 typedef struct mimas_fields_file mimas_fields_file;
 
-/* Starts PATH (and PATH with .xdmf instead of .h5) under temporary names. */
-int mimas_fields_open(mimas_fields_file **ff, const char *path, mimas_error *err);
+/* Starts PATH under a temporary name; want[k] says which of the
+ * mimas_field() columns to write (NULL: all).  PATH's XDMF sidecars
+ * (PATH with .xdmf instead of .h5, and -frames.xdmf with --per-frame) are
+ * written by mimas_fields_finish. */
+int mimas_fields_open(mimas_fields_file **ff, const char *path, const unsigned char *want,
+                      mimas_error *err);
 /* Appends the fields of one frame (an average holding just that frame) to
  * /frames (--per-frame). */
 int mimas_fields_append_frame(mimas_fields_file *ff, const mimas_average *frame, int64_t step,

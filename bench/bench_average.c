@@ -1,12 +1,17 @@
 /* Benchmark of mimas average: 10^5 particles on a jittered simple cubic
  * lattice (d = 1 mm) with their 3x10^5 nearest-neighbour contacts; bins and
  * gauss (w = d) on an x-y-z grid of spacing d and on an r-z grid of spacing d.
- * Prints particles/s and contacts/s of one core (contact time = time with
- * contacts minus time without).
- *   bench_average [--frames F] [--only CASE] */
+ * Prints particles/s and contacts/s (contact time = time with contacts minus
+ * time without), from the wall clock and, for one thread, from the process's
+ * CPU time (which a loaded machine disturbs less).
+ * --scaling: how the time grows with the kernel width (gauss x-y-z, w = d/2 .. 4d, one
+ * thread, a 20^3 lattice on a 20^3 grid), with the cells a particle touches for
+ * comparison: the separable deposit grows like them, ~w^3.
+ *   bench_average [--frames F] [--only CASE] [--threads N] [--scaling] */
 #include <config.h>
 
 #include <gsl/gsl_rng.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,12 +19,16 @@
 
 #include "average.h"
 
-static double now(void)
+static double clock_of(clockid_t id)
 {
     struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
+    clock_gettime(id, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
+
+typedef struct timing {
+    double wall, cpu; /* seconds per frame */
+} timing;
 
 static void build(mimas_frame *f, int m, double d)
 {
@@ -59,7 +68,7 @@ static void build(mimas_frame *f, int m, double d)
     gsl_rng_free(rng);
 }
 
-static double run(const mimas_frame *f, const char *grid, const char *weight, int frames,
+static timing run(const mimas_frame *f, const char *grid, const char *weight, int frames,
                   int threads)
 {
     mimas_average_options o;
@@ -76,34 +85,80 @@ static double run(const mimas_frame *f, const char *grid, const char *weight, in
         fprintf(stderr, "bench_average: %s\n", err.msg);
         exit(2);
     }
-    double t0 = now();
+    double t0 = clock_of(CLOCK_MONOTONIC), c0 = clock_of(CLOCK_PROCESS_CPUTIME_ID);
     for (int k = 0; k < frames; k++)
         if (mimas_average_add(a, f, &err)) {
             fprintf(stderr, "bench_average: %s\n", err.msg);
             exit(2);
         }
-    double t = (now() - t0) / frames;
+    timing t = {(clock_of(CLOCK_MONOTONIC) - t0) / frames,
+                (clock_of(CLOCK_PROCESS_CPUTIME_ID) - c0) / frames};
     mimas_average_free(a);
     return t;
 }
 
+/* The frame of an m^3 lattice with its contacts, and the same without contacts. */
+static void build_pair(mimas_frame *f, mimas_frame *bare, int m, double d)
+{
+    mimas_frame_init(f);
+    mimas_frame_init(bare);
+    build(f, m, d);
+    build(bare, m, d);
+    bare->has_contacts = 0;
+}
+
+/* CPU time per frame against the width w, and the exponent between neighbours */
+static int scaling(void)
+{
+    const int m = 20;
+    const double d = 0.001, L = m * d;
+    mimas_frame f, bare;
+    build_pair(&f, &bare, m, d);
+    char grid[256];
+    snprintf(grid, sizeof grid, "x=0:%g:%d,y=0:%g:%d,z=0:%g:%d", L, m, L, m, L, m);
+    const double ws[5] = {0.5, 1, 2, 3, 4};
+    double prev_p = 0, prev_c = 0;
+    printf("gauss x-y-z, %zu particles, %zu contacts, spacing d, 1 thread, CPU time per frame:\n",
+           f.particles.n, f.contacts.n);
+    for (int k = 0; k < 5; k++) {
+        char weight[64];
+        snprintf(weight, sizeof weight, "gauss:w=%g", ws[k] * d);
+        timing all = run(&f, grid, weight, 1, 1), p = run(&bare, grid, weight, 1, 1);
+        double tp = p.cpu, tc = all.cpu - p.cpu, cells = pow(2 * 3 * ws[k] + 1, 3);
+        printf("  w = %.1f d: particles %.3g s, contacts %.3g s (cells in reach ~%.0f)", ws[k], tp,
+               tc, cells);
+        if (k > 0)
+            printf("  exponents %.2f, %.2f (cells %.2f)", log(tp / prev_p) / log(ws[k] / ws[k - 1]),
+                   log(tc / prev_c) / log(ws[k] / ws[k - 1]),
+                   log(cells / pow(2 * 3 * ws[k - 1] + 1, 3)) / log(ws[k] / ws[k - 1]));
+        printf("\n");
+        fflush(stdout);
+        prev_p = tp;
+        prev_c = tc;
+    }
+    mimas_frame_free(&f);
+    mimas_frame_free(&bare);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
-    int frames = 3, only = -1;
+    int frames = 3, only = -1, max_threads = 2;
+    for (int k = 1; k < argc; k++)
+        if (!strcmp(argv[k], "--scaling"))
+            return scaling();
     for (int k = 1; k + 1 < argc; k += 2) {
         if (!strcmp(argv[k], "--frames"))
             frames = atoi(argv[k + 1]);
         else if (!strcmp(argv[k], "--only"))
             only = atoi(argv[k + 1]); /* one case, for profiling */
+        else if (!strcmp(argv[k], "--threads"))
+            max_threads = atoi(argv[k + 1]);
     }
     const int m = 46; /* 97,336 particles, 292,008 contacts */
     const double d = 0.001, L = m * d;
     mimas_frame f, bare;
-    mimas_frame_init(&f);
-    mimas_frame_init(&bare);
-    build(&f, m, d);
-    build(&bare, m, d);
-    bare.has_contacts = 0;
+    build_pair(&f, &bare, m, d);
     char xyz[256], rz[256];
     snprintf(xyz, sizeof xyz, "x=0:%g:%d,y=0:%g:%d,z=0:%g:%d", L, m, L, m, L, m);
     snprintf(rz, sizeof rz, "r=0:%g:%d,z=0:%g:%d", L, m, L, m);
@@ -114,14 +169,19 @@ int main(int argc, char **argv)
     printf("mimas average: %zu particles, %zu contacts per frame, spacing = w = d = 1 mm\n",
            f.particles.n, f.contacts.n);
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++)
-        for (int threads = 1; threads <= 2; threads++) {
+        for (int threads = 1; threads <= max_threads; threads++) {
             if (only >= 0 && (size_t)only != k)
                 continue;
-            double t_all = run(&f, cases[k].grid, cases[k].weight, frames, threads);
-            double t_p = run(&bare, cases[k].grid, cases[k].weight, frames, threads);
-            printf("  %s  %d thread%s  %.3f s/frame: particles %.3g /s, contacts %.3g /s\n",
-                   cases[k].name, threads, threads > 1 ? "s" : " ", t_all,
-                   (double)f.particles.n / t_p, (double)f.contacts.n / (t_all - t_p));
+            timing t_all = run(&f, cases[k].grid, cases[k].weight, frames, threads);
+            timing t_p = run(&bare, cases[k].grid, cases[k].weight, frames, threads);
+            printf("  %s  %d thread%s  %.3f s/frame: particles %.3g /s, contacts %.3g /s (wall)",
+                   cases[k].name, threads, threads > 1 ? "s" : " ", t_all.wall,
+                   (double)f.particles.n / t_p.wall, (double)f.contacts.n / (t_all.wall - t_p.wall));
+            if (threads == 1)
+                printf("; %.3g /s, %.3g /s (cpu)", (double)f.particles.n / t_p.cpu,
+                       (double)f.contacts.n / (t_all.cpu - t_p.cpu));
+            printf("\n");
+            fflush(stdout);
         }
     mimas_frame_free(&f);
     mimas_frame_free(&bare);

@@ -21,6 +21,11 @@ typedef struct reader_backend {
     int (*next)(void *state, mimas_frame *f, mimas_error *err);
     size_t (*skipped)(void *state); /* may be NULL */
     void (*close)(void *state);
+    /* optional, for formats that can do them without reading the frame's
+     * arrays (NULL: readers/reader.c reads the frame instead): the step and
+     * time of the next frame without consuming it, and passing over it */
+    int (*peek)(void *state, int64_t *step, double *time, mimas_error *err);
+    int (*skip)(void *state, mimas_error *err);
     /* the run parameters of the inputs (may be NULL: the format has none) */
     const mimas_parameters *(*parameters)(void *state);
 } reader_backend;

@@ -2,6 +2,7 @@
  * with local dumps of contacts and wall contacts at the same timesteps. */
 #include <config.h>
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,6 +26,7 @@ typedef struct lammps_state {
     local_stream contacts, walls;
     mimas_id_index index;
     size_t skipped;
+    int ahead;   /* the next complete snapshot's headers are read, its rows are not */
 } lammps_state;
 
 static int probe(const char *path, const char *head, size_t n)
@@ -52,7 +54,8 @@ static void close_state(void *state)
 }
 
 static int open_local(local_stream *ls, const char *const *files, size_t n, const char *keywords,
-                      int walls, mimas_error *err)
+                      int walls, void (*notify)(void *, const char *), void *notify_ctx,
+                      mimas_error *err)
 {
     if (n == 0)
         return MIMAS_OK;
@@ -65,6 +68,8 @@ static int open_local(local_stream *ls, const char *const *files, size_t n, cons
     ls->what = walls ? "wall-contact" : "contact";
     ls->layout.keywords = keywords;
     ls->layout.walls = walls;
+    ls->layout.notify = notify;
+    ls->layout.notify_ctx = notify_ctx;
     return dump_series_open(&ls->s, names, count, err);
 }
 
@@ -82,9 +87,11 @@ static int open_state(void **state, const char *const *inputs, size_t ninputs,
     if (!rc)
         rc = dump_series_open(&st->atoms, names, count, err);
     if (!rc)
-        rc = open_local(&st->contacts, o->contacts, o->ncontacts, o->contact_columns, 0, err);
+        rc = open_local(&st->contacts, o->contacts, o->ncontacts, o->contact_columns, 0,
+                        o->notify, o->notify_ctx, err);
     if (!rc)
-        rc = open_local(&st->walls, o->walls, o->nwalls, o->wall_columns, 1, err);
+        rc = open_local(&st->walls, o->walls, o->nwalls, o->wall_columns, 1, o->notify,
+                        o->notify_ctx, err);
     if (rc) {
         close_state(st);
         return rc;
@@ -150,10 +157,12 @@ static int check_drained(lammps_state *st, local_stream *ls, mimas_error *err)
                       (long long)ls->s.h.step);
 }
 
-static int next(void *state, mimas_frame *f, mimas_error *err)
+/* Reads the headers of the next snapshot whose contact data are complete
+ * (the atoms' and, at its timestep, the local dumps'), not its rows:
+ * MIMAS_OK with st->ahead set, MIMAS_END, or an error. */
+static int read_ahead(lammps_state *st, mimas_error *err)
 {
-    lammps_state *st = state;
-    for (;;) {
+    while (!st->ahead) {
         int rc = dump_series_header(&st->atoms, err);
         if (rc == MIMAS_END) {
             rc = check_drained(st, &st->contacts, err);
@@ -166,11 +175,6 @@ static int next(void *state, mimas_frame *f, mimas_error *err)
         if (st->atoms.h.entries)
             return text_error(&st->atoms.in, err, "a local dump (ITEM: ENTRIES) given as the "
                               "particle input; contacts go with --contacts");
-        f->has_contacts = f->has_walls = 0;
-        rc = atoms_read(&st->atoms, &st->alayout, f, st->opt.density, st->opt.timestep,
-                        &st->index, err);
-        if (rc)
-            return rc;
         int64_t step = st->atoms.h.step;
         int complete = 1;
         local_stream *ls[2] = {&st->contacts, &st->walls};
@@ -181,22 +185,80 @@ static int next(void *state, mimas_frame *f, mimas_error *err)
             rc = sync_local(st, ls[k], step, st->atoms.in.path, &found, err);
             if (rc)
                 return rc;
-            if (!found) {
+            if (!found)
                 complete = 0;
-                break;
-            }
-            if (!ls[k]->s.h.entries)
+            else if (!ls[k]->s.h.entries)
                 return text_error(&ls[k]->s.in, err, "a per-atom dump given as %s data",
                                   ls[k]->what);
-            rc = local_read(&ls[k]->s, &ls[k]->layout, f, &st->index, err);
-            ls[k]->pending = 0;
-            if (rc)
-                return rc;
         }
-        if (complete)
-            return MIMAS_OK;
+        if (complete) {
+            st->ahead = 1;
+            break;
+        }
+        /* incomplete (only with allow_missing_contacts): pass over its atoms */
+        rc = local_skip(&st->atoms, err);
+        if (rc)
+            return rc;
         st->skipped++;
     }
+    return MIMAS_OK;
+}
+
+static int next(void *state, mimas_frame *f, mimas_error *err)
+{
+    lammps_state *st = state;
+    int rc = read_ahead(st, err);
+    if (rc)
+        return rc;
+    st->ahead = 0;
+    f->has_contacts = f->has_walls = 0;
+    rc = atoms_read(&st->atoms, &st->alayout, f, st->opt.density, st->opt.timestep, &st->index,
+                    err);
+    if (rc)
+        return rc;
+    local_stream *ls[2] = {&st->contacts, &st->walls};
+    for (int k = 0; k < 2; k++) {
+        if (!ls[k]->on)
+            continue;
+        rc = local_read(&ls[k]->s, &ls[k]->layout, f, &st->index, err);
+        ls[k]->pending = 0;
+        if (rc)
+            return rc;
+    }
+    return MIMAS_OK;
+}
+
+/* The next snapshot's step and time from its header alone. */
+static int peek(void *state, int64_t *step, double *time, mimas_error *err)
+{
+    lammps_state *st = state;
+    int rc = read_ahead(st, err);
+    if (rc)
+        return rc;
+    const dump_header *h = &st->atoms.h;
+    *step = h->step;
+    *time = h->has_time ? h->time
+                        : (st->opt.timestep > 0 ? (double)h->step * st->opt.timestep : NAN);
+    return MIMAS_OK;
+}
+
+/* Passes over the next snapshot's rows without parsing them. */
+static int skip(void *state, mimas_error *err)
+{
+    lammps_state *st = state;
+    int rc = read_ahead(st, err);
+    if (rc)
+        return rc;
+    st->ahead = 0;
+    rc = local_skip(&st->atoms, err);
+    local_stream *ls[2] = {&st->contacts, &st->walls};
+    for (int k = 0; k < 2 && !rc; k++) {
+        if (!ls[k]->on)
+            continue;
+        rc = local_skip(&ls[k]->s, err);
+        ls[k]->pending = 0;
+    }
+    return rc;
 }
 
 static size_t skipped(void *state)
@@ -205,4 +267,4 @@ static size_t skipped(void *state)
 }
 
 const reader_backend reader_lammps = {"lammps", "LAMMPS/LIGGGHTS text dump", probe, open_state,
-                                      next, skipped, close_state, NULL};
+                                      next, skipped, close_state, peek, skip, NULL};

@@ -12,7 +12,7 @@
 
 enum {
     A_SKIP, A_ID, A_TYPE, A_X, A_XU, A_XS, A_XSU, A_IMAGE, A_V, A_F, A_OMEGA, A_RADIUS,
-    A_DIAMETER, A_MASS, A_EXTRA
+    A_DIAMETER, A_MASS, A_CG, A_LIQUID, A_EXTRA
 };
 
 /* Named per-atom columns LAMMPS and LIGGGHTS write; anything else is kept as
@@ -31,33 +31,14 @@ static const struct {
     {"fy", A_F, 1},          {"fz", A_F, 2},            {"omegax", A_OMEGA, 0},
     {"omegay", A_OMEGA, 1},  {"omegaz", A_OMEGA, 2},    {"radius", A_RADIUS, 0},
     {"diameter", A_DIAMETER, 0}, {"mass", A_MASS, 0},
+    /* the names mimas convert --to lammps gives them */
+    {"coarse_grain_factor", A_CG, 0}, {"liquid_volume", A_LIQUID, 0},
 };
 
 void atom_layout_free(atom_layout *l)
 {
     dump_columns_free(&l->c);
     memset(l, 0, sizeof *l);
-}
-
-/* "c_stress[3]" -> base "c_stress", index 3; other names: index 0. */
-static int split_index(const char *name, char *base, size_t cap)
-{
-    const char *br = strchr(name, '[');
-    size_t n = br ? (size_t)(br - name) : strlen(name);
-    int idx = 0;
-    if (br) {
-        char *end;
-        long v = strtol(br + 1, &end, 10);
-        if (end != br + 1 && end[0] == ']' && end[1] == '\0' && v > 0 && v < 1000)
-            idx = (int)v;
-        else
-            n = strlen(name);
-    }
-    if (n >= cap)
-        n = cap - 1;
-    memcpy(base, name, n);
-    base[n] = '\0';
-    return idx;
 }
 
 static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
@@ -90,24 +71,11 @@ static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
             prev_idx = 0;
             continue;
         }
-        /* extras: consecutive X[1], X[2], ... form one column of ncomp values */
-        char base[64];
-        int idx = split_index(tok, base, sizeof base);
-        if (idx > 1 && cl->nextra && idx == prev_idx + 1 &&
-            !strcmp(cl->extra_name[cl->nextra - 1], base)) {
-            c->extra = cl->nextra - 1;
-            c->comp = cl->extra_ncomp[c->extra]++;
-        } else {
-            for (size_t e = 0; e < cl->nextra; e++)
-                if (!strcmp(cl->extra_name[e], idx ? base : tok)) {
-                    int rc = text_error(&s->in, err, "column '%s' appears twice", tok);
-                    free(text);
-                    return rc;
-                }
-            c->extra = dump_columns_add_extra(cl, idx ? base : tok, 1);
-            c->comp = 0;
+        if (dump_columns_extra_column(cl, c, tok, &prev_idx)) {
+            int rc = text_error(&s->in, err, "column '%s' appears twice", tok);
+            free(text);
+            return rc;
         }
-        prev_idx = idx;
     }
     free(text);
     if (!have[A_ID][0])
@@ -128,6 +96,10 @@ static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
         l->bits |= MIMAS_P_RADIUS;
     if (have[A_MASS][0])
         l->bits |= MIMAS_P_MASS;
+    if (have[A_CG][0])
+        l->bits |= MIMAS_P_CG;
+    if (have[A_LIQUID][0])
+        l->bits |= MIMAS_P_LIQUID;
     static const struct {
         int target;
         unsigned bit;
@@ -218,6 +190,8 @@ static int parse_row(dump_series *s, const atom_layout *l, mimas_particles *p, s
         case A_RADIUS: p->radius[k] = dv; break;
         case A_DIAMETER: p->radius[k] = 0.5 * dv; break;
         case A_MASS: p->mass[k] = dv; break;
+        case A_CG: p->cg[k] = dv; break;
+        case A_LIQUID: p->liquid[k] = dv; break;
         case A_EXTRA:
             p->extra[col->extra].data[k * (size_t)p->extra[col->extra].ncomp + (size_t)col->comp] =
                 dv;

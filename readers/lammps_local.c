@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lammps_infer.h"
 #include "numparse.h"
 
 enum {
@@ -35,11 +36,12 @@ static const struct {
 void local_layout_free(local_layout *l)
 {
     dump_columns_free(&l->c);
-    const char *kw = l->keywords;
-    int walls = l->walls;
+    local_layout keep = *l;
     memset(l, 0, sizeof *l);
-    l->keywords = kw;
-    l->walls = walls;
+    l->keywords = keep.keywords;
+    l->walls = keep.walls;
+    l->notify = keep.notify;
+    l->notify_ctx = keep.notify_ctx;
 }
 
 static size_t add_extra(local_layout *l, const char *name, int ncomp)
@@ -97,12 +99,12 @@ static void gran_keyword(local_layout *l, const char *key, int width, dump_col *
     }
 }
 
-/* --contact-columns KEY,KEY[:N],... against c_ID[k] columns. */
-static int gran_layout(dump_series *s, local_layout *l, mimas_error *err)
+/* --contact-columns KEY,KEY[:N],... (keywords) against c_ID[k] columns. */
+static int gran_layout(dump_series *s, local_layout *l, const char *keywords, mimas_error *err)
 {
     int width[NGRAN] = {0};
     int history_open = 0;
-    char *text = strdup(l->keywords), *save = NULL;
+    char *text = strdup(keywords), *save = NULL;
     if (!text)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
     int rc = MIMAS_OK;
@@ -158,7 +160,7 @@ static int gran_layout(dump_series *s, local_layout *l, mimas_error *err)
     }
     if ((size_t)total != l->c.ncols)
         return text_error(&s->in, err, "the keywords '%s' make %d columns, the dump has %zu",
-                          l->keywords, total, l->c.ncols);
+                          keywords, total, l->c.ncols);
     int at = 0;
     for (size_t k = 0; k < NGRAN; k++)
         if (width[k] > 0) {
@@ -188,7 +190,7 @@ static int named_layout(dump_series *s, local_layout *l, const char *names, mima
     if (!text)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
     size_t c = 0;
-    int rc = MIMAS_OK;
+    int rc = MIMAS_OK, prev_idx = 0;
     const char *sep = strchr(names, ',') ? "," : " \t";
     for (char *tok = strtok_r(text, sep, &save); tok && !rc; tok = strtok_r(NULL, sep, &save)) {
         if (c >= l->c.ncols) {
@@ -201,8 +203,11 @@ static int named_layout(dump_series *s, local_layout *l, const char *names, mima
         for (size_t k = 0; k < sizeof named / sizeof named[0]; k++)
             if (!strcmp(named[k].name, tok))
                 set(col, named[k].target, named[k].comp);
-        if (col->target == L_EXTRA)
-            col->extra = add_extra(l, tok, 1);
+        if (col->target != L_EXTRA)
+            prev_idx = 0;
+        /* other names are extras; NAME[1] NAME[2] ... form one of k components */
+        else if (dump_columns_extra_column(&l->c, col, tok, &prev_idx))
+            rc = text_error(&s->in, err, "column '%s' appears twice", tok);
     }
     free(text);
     if (!rc && c != l->c.ncols)
@@ -247,14 +252,21 @@ static int build_layout(dump_series *s, local_layout *l, mimas_error *err)
     int gran = l->keywords && all_gran_keywords(l->keywords);
     int rc;
     if (l->keywords && gran)
-        rc = gran_layout(s, l, err);
+        rc = gran_layout(s, l, l->keywords, err);
     else if (l->keywords)
         rc = named_layout(s, l, l->keywords, err);
-    else if (is_anonymous(s->h.columns))
-        rc = text_error(&s->in, err, "local dump columns are anonymous (%.20s...): name the "
-                        "keywords of the compute with --%s-columns",
-                        s->h.columns + strspn(s->h.columns, " \t"), l->walls ? "wall" : "contact");
-    else
+    else if (is_anonymous(s->h.columns)) {
+        /* LIGGGHTS' anonymous columns: the keyword set their count tells,
+         * checked on the first contacts read (local_read) */
+        if (gran_infer_keywords(l->c.ncols, l->inferred, sizeof l->inferred))
+            return text_error(&s->in, err, "local dump columns are anonymous (%.20s...) and "
+                              "%zu of them are none of the LIGGGHTS keyword sets mimas "
+                              "recognises: name the keywords of the compute with --%s-columns",
+                              s->h.columns + strspn(s->h.columns, " \t"), l->c.ncols,
+                              l->walls ? "wall" : "contact");
+        rc = gran_layout(s, l, l->inferred, err);
+        l->check_pending = 1;
+    } else
         rc = named_layout(s, l, s->h.columns, err);
     if (rc)
         return rc;
@@ -346,6 +358,28 @@ static int setup_table(local_layout *l, void *tab, const mimas_table_desc *d, si
     return rc ? rc : mimas_table_resize(tab, d, n, err);
 }
 
+/* The inferred keywords against the first contacts read with them: a data
+ * error if they do not fit, else the reader's notify is told. */
+static int check_inferred(dump_series *s, local_layout *l, const mimas_frame *f, size_t n,
+                          mimas_error *err)
+{
+    char why[256];
+    const char *opt = l->walls ? "wall-columns" : "contact-columns";
+    if (gran_check_inferred(f, l->walls, why, sizeof why))
+        return mimas_error_set(err, MIMAS_EDATA, "%s: the %zu anonymous columns look like "
+                               "--%s %s, but %s (timestep %lld): give --%s", s->in.path,
+                               l->c.ncols, opt, l->inferred, why, (long long)s->h.step, opt);
+    l->check_pending = 0;
+    if (l->notify) {
+        char msg[900];
+        snprintf(msg, sizeof msg, "%s: %zu anonymous columns read as --%s %s (checked on "
+                 "timestep %lld: %zu %scontact%s)", s->in.path, l->c.ncols, opt, l->inferred,
+                 (long long)s->h.step, n, l->walls ? "wall " : "", n == 1 ? "" : "s");
+        l->notify(l->notify_ctx, msg);
+    }
+    return MIMAS_OK;
+}
+
 int local_read(dump_series *s, local_layout *l, mimas_frame *f, const mimas_id_index *index,
                mimas_error *err)
 {
@@ -427,6 +461,8 @@ int local_read(dump_series *s, local_layout *l, mimas_frame *f, const mimas_id_i
     if (!rc && !l->walls && (l->derive_point || l->derive_overlap))
         rc = derive(l, f, dist, s, err);
     free(dist);
+    if (!rc && l->check_pending && n > 0)
+        rc = check_inferred(s, l, f, n, err);
     if (!rc) {
         if (l->walls)
             f->has_walls = 1;

@@ -10,6 +10,10 @@
 typedef struct local_layout {
     int walls;           /* wall/gran/local rather than pair contacts */
     const char *keywords;/* --contact-columns / --wall-columns (may be NULL) */
+    void (*notify)(void *ctx, const char *message); /* mimas_reader_options' */
+    void *notify_ctx;
+    char inferred[512];  /* the keywords told from the column count, or "" */
+    int check_pending;   /* the inferred keywords still need checking on data */
     dump_columns c;      /* targets: the enum in lammps_local.c */
     unsigned bits;       /* contact quantities given by columns */
     int derive_point;    /* contact point from positions and radii */

@@ -343,6 +343,46 @@ size_t dump_columns_add_extra(dump_columns *c, const char *name, int ncomp)
     return c->nextra++;
 }
 
+/* "c_stress[3]" -> base "c_stress", index 3; other names: index 0. */
+static int split_index(const char *name, char *base, size_t cap)
+{
+    const char *br = strchr(name, '[');
+    size_t n = br ? (size_t)(br - name) : strlen(name);
+    int idx = 0;
+    if (br) {
+        char *end;
+        long v = strtol(br + 1, &end, 10);
+        if (end != br + 1 && end[0] == ']' && end[1] == '\0' && v > 0 && v < 1000)
+            idx = (int)v;
+        else
+            n = strlen(name);
+    }
+    if (n >= cap)
+        n = cap - 1;
+    memcpy(base, name, n);
+    base[n] = '\0';
+    return idx;
+}
+
+int dump_columns_extra_column(dump_columns *c, dump_col *col, const char *name, int *prev_idx)
+{
+    char base[64];
+    int idx = split_index(name, base, sizeof base);
+    if (idx > 1 && c->nextra && idx == *prev_idx + 1 &&
+        !strcmp(c->extra_name[c->nextra - 1], base)) {
+        col->extra = c->nextra - 1;
+        col->comp = c->extra_ncomp[col->extra]++;
+    } else {
+        for (size_t e = 0; e < c->nextra; e++)
+            if (!strcmp(c->extra_name[e], idx ? base : name))
+                return -1;
+        col->extra = dump_columns_add_extra(c, idx ? base : name, 1);
+        col->comp = 0;
+    }
+    *prev_idx = idx;
+    return 0;
+}
+
 int dump_columns_extras_to(const dump_columns *c, void *tab, const mimas_table_desc *d,
                            mimas_error *err)
 {

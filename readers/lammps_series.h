@@ -56,6 +56,12 @@ int dump_columns_current(const dump_columns *c, const char *header);
 /* Frees c and allocates room for the columns of header; ncols is 0. */
 int dump_columns_reset(dump_columns *c, const char *header, mimas_error *err);
 size_t dump_columns_add_extra(dump_columns *c, const char *name, int ncomp);
+/* Makes column col (named name) an extra column: consecutive NAME[1],
+ * NAME[2], ... form one extra of that many components (*prev_idx: the
+ * index of the previous column, 0 after a column that is not an extra).
+ * Sets col->extra and col->comp, leaves col->target to the caller; -1 if
+ * the name repeats an earlier extra. */
+int dump_columns_extra_column(dump_columns *c, dump_col *col, const char *name, int *prev_idx);
 /* Gives the table exactly c's extra columns (kept if they are already those). */
 int dump_columns_extras_to(const dump_columns *c, void *tab, const mimas_table_desc *d,
                            mimas_error *err);

@@ -920,4 +920,5 @@ static size_t skipped(void *state)
 }
 
 const reader_backend reader_mercury = {"mercury", "MercuryDPM (.data, .fstat)", probe,
-                                       open_stream, next, skipped, close_stream, NULL};
+                                       open_stream, next, skipped, close_stream, NULL, NULL,
+                                       NULL};

@@ -1,12 +1,15 @@
 /* Native format reader (docs/format.md): random access to frame k, reading
  * nothing of the other frames.  The frame count is the number of frames whose
  * every dataset is complete, so a file cut off while a frame was being
- * written shows the frames before it. */
+ * written shows the frames before it.  Files are opened for SWMR reading, so
+ * a file that mimas simulate is still writing yields the frames committed
+ * when it was opened. */
 #include <config.h>
 
 #include "native.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,6 +41,11 @@ struct mimas_native {
     native_col *pcols;
     unsigned p_bits;
     read_flat contacts, walls;
+    mimas_tube tube;           /* format 1.1, optional */
+    int has_gas;
+    size_t gas_cells[3];
+    double gas_origin[3], gas_spacing[3];
+    hid_t gas_ds[3];           /* pressure, porosity, velocity */
     mimas_id_index index;
     int64_t *ids;
     size_t ids_cap;
@@ -254,6 +262,72 @@ static int open_flat(mimas_native *r, read_flat *t, const char *group, mimas_err
     return MIMAS_OK;
 }
 
+/* /parameters/tube (format 1.1; absent in 1.0 files) */
+static int open_tube(mimas_native *r, mimas_error *err)
+{
+    if (H5Lexists(r->file, "/parameters", H5P_DEFAULT) <= 0 ||
+        H5Lexists(r->file, NATIVE_TUBE, H5P_DEFAULT) <= 0)
+        return MIMAS_OK;
+    hid_t g = H5Gopen2(r->file, NATIVE_TUBE, H5P_DEFAULT);
+    mimas_tube *t = &r->tube;
+    int ok = g >= 0 && h5_attr_read_doubles(g, "origin", t->origin, 3) == 3 &&
+             h5_attr_read_doubles(g, "direction", t->direction, 3) == 3 &&
+             h5_attr_read_doubles(g, "radius", &t->radius, 1) == 1 &&
+             h5_attr_read_doubles(g, "length", &t->length, 1) == 1;
+    if (g >= 0)
+        H5Gclose(g);
+    double dn = sqrt(t->direction[0] * t->direction[0] + t->direction[1] * t->direction[1] +
+                     t->direction[2] * t->direction[2]);
+    if (!ok || !(t->radius > 0) || !(t->length > 0) || !(fabs(dn - 1) < 1e-9))
+        return bad(r, err, "%s", NATIVE_TUBE " lacks origin, direction (a unit vector), "
+                   "radius > 0 or length > 0");
+    t->present = 1;
+    return MIMAS_OK;
+}
+
+/* /fields/gas (format 1.1; absent in 1.0 files) */
+static int open_gas(mimas_native *r, mimas_error *err)
+{
+    if (H5Lexists(r->file, "/fields", H5P_DEFAULT) <= 0 ||
+        H5Lexists(r->file, NATIVE_GAS, H5P_DEFAULT) <= 0)
+        return MIMAS_OK;
+    hid_t g = H5Gopen2(r->file, NATIVE_GAS, H5P_DEFAULT);
+    int64_t cells[3];
+    int ok = g >= 0 && h5_attr_read_doubles(g, "origin", r->gas_origin, 3) == 3 &&
+             h5_attr_read_doubles(g, "spacing", r->gas_spacing, 3) == 3 &&
+             h5_attr_read_int64s(g, "cells", cells, 3) == 3;
+    if (g >= 0)
+        H5Gclose(g);
+    for (int d = 0; d < 3 && ok; d++) {
+        ok = cells[d] >= 1 && cells[d] <= (1 << 24) && r->gas_spacing[d] > 0;
+        r->gas_cells[d] = ok ? (size_t)cells[d] : 0;
+    }
+    if (!ok)
+        return bad(r, err, "%s", NATIVE_GAS " lacks origin, spacing > 0 or cells >= 1");
+    static const char *const names[3] = {"pressure", "porosity", "velocity"};
+    int rc = MIMAS_OK;
+    for (int k = 0; k < 3 && !rc; k++) {
+        char path[128];
+        snprintf(path, sizeof path, NATIVE_GAS "/%s/value", names[k]);
+        r->gas_ds[k] = open_ds(r, path, &rc, err);
+        if (rc)
+            break;
+        hsize_t dims[5];
+        hid_t sp = H5Dget_space(r->gas_ds[k]);
+        int rank = H5Sget_simple_extent_ndims(sp);
+        if (rank == (k == 2 ? 5 : 4))
+            H5Sget_simple_extent_dims(sp, dims, NULL);
+        H5Sclose(sp);
+        if (rank != (k == 2 ? 5 : 4) || dims[1] != r->gas_cells[2] || dims[2] != r->gas_cells[1] ||
+            dims[3] != r->gas_cells[0] || (k == 2 && dims[4] != 3))
+            return bad(r, err, "%s does not have the shape (frames, %zu, %zu, %zu%s)", path,
+                       r->gas_cells[2], r->gas_cells[1], r->gas_cells[0], k == 2 ? ", 3" : "");
+        r->frames = min_frames(r->frames, dims[0]);
+    }
+    r->has_gas = !rc;
+    return rc;
+}
+
 static int check_version(mimas_native *r, mimas_error *err)
 {
     if (H5Lexists(r->file, "/h5md", H5P_DEFAULT) <= 0)
@@ -357,9 +431,9 @@ void mimas_native_close(mimas_native *r)
                 H5Dclose(ids[m]);
         close_cols(fl[k]->cols, fl[k]->ncols);
     }
-    hid_t ids[6] = {r->clock_step, r->clock_time, r->count,
-                    r->box_edges, r->box_lower, r->box_upper};
-    for (int k = 0; k < 6; k++)
+    hid_t ids[9] = {r->clock_step, r->clock_time, r->count, r->box_edges, r->box_lower,
+                    r->box_upper, r->gas_ds[0], r->gas_ds[1], r->gas_ds[2]};
+    for (int k = 0; k < 9; k++)
         if (ids[k] > 0)
             H5Dclose(ids[k]);
     for (size_t k = 0; k < r->nobs; k++)
@@ -405,9 +479,31 @@ int mimas_native_open(mimas_native **out, const char *path, mimas_error *err)
     } else {
         hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
         H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
-        r->file = H5Fopen(path, H5F_ACC_RDONLY, fapl);
-        char text[256];
-        h5_error_text(text, sizeof text); /* before any other call clears the stack */
+        /* single-writer/multiple-reader read: the committed frames of a file
+         * that is still being written; files of the older format (or not
+         * written in SWMR mode) are opened plainly */
+        char text[256] = "", text2[256] = "";
+        r->file = H5Fopen(path, H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, fapl);
+        if (r->file < 0) {
+            h5_error_text(text, sizeof text); /* before any other call clears the stack */
+            r->file = H5Fopen(path, H5F_ACC_RDONLY, fapl);
+            if (r->file < 0)
+                h5_error_text(text2, sizeof text2);
+            if (!strstr(text, "truncated") || strstr(text2, "truncated"))
+                memcpy(text, text2, sizeof text);
+        } else {
+            /* SWMR readers skip HDF5's end-of-file check (a writer may be
+             * extending the file): the committed end must be there */
+            haddr_t eoa = 0;
+            struct stat now;
+            if (H5Fget_eoa(r->file, &eoa) >= 0 && stat(path, &now) == 0 &&
+                (haddr_t)now.st_size < eoa) {
+                H5Fclose(r->file);
+                r->file = H5I_INVALID_HID;
+                snprintf(text, sizeof text, "truncated file: eof = %lld, eoa = %llu",
+                         (long long)now.st_size, (unsigned long long)eoa);
+            }
+        }
         H5Pclose(fapl);
         if (r->file < 0) {
             rc = mimas_error_set(err, MIMAS_EDATA,
@@ -426,6 +522,10 @@ int mimas_native_open(mimas_native **out, const char *path, mimas_error *err)
         rc = open_flat(r, &r->contacts, NATIVE_CONTACTS, err);
     if (!rc)
         rc = open_flat(r, &r->walls, NATIVE_WALLS, err);
+    if (!rc)
+        rc = open_tube(r, err);
+    if (!rc)
+        rc = open_gas(r, err);
     if (!rc)
         rc = open_metadata(r, err);
     h5_quiet_end(&q);
@@ -455,6 +555,32 @@ int mimas_native_has_walls(const mimas_native *r)
 const char *mimas_native_creator(const mimas_native *r)
 {
     return r->creator;
+}
+
+size_t mimas_native_particle_columns(const mimas_native *r)
+{
+    return r->npcols;
+}
+
+void mimas_native_particle_column(const mimas_native *r, size_t k, mimas_native_column *c)
+{
+    const native_col *nc = &r->pcols[k];
+    memset(c, 0, sizeof *c);
+    c->name = nc->name;
+    c->ncomp = nc->ncomp;
+    h5_quiet q;
+    h5_quiet_begin(&q);
+    hid_t ft = H5Dget_type(nc->ds);
+    c->is_float = H5Tget_class(ft) == H5T_FLOAT;
+    c->precision = (int)H5Tget_size(ft);
+    H5Tclose(ft);
+    hsize_t dims[4] = {0};
+    c->rank = ds_shape(nc->ds, dims);
+    if (c->rank > 3)
+        c->rank = 3;
+    for (int d = 0; d < c->rank; d++)
+        c->dims[d] = dims[d];
+    h5_quiet_end(&q);
 }
 
 /* ---- reading frame k ---- */
@@ -621,6 +747,23 @@ static int read_flat_frame(mimas_native *r, read_flat *t, size_t k, void *tab,
     return rc;
 }
 
+static int read_gas(mimas_native *r, size_t k, mimas_gas *g, mimas_error *err)
+{
+    const size_t *c = r->gas_cells;
+    int rc = mimas_gas_resize(g, c[0], c[1], c[2], err);
+    if (rc)
+        return mimas_error_prefix(err, "%s", r->path);
+    memcpy(g->origin, r->gas_origin, sizeof g->origin);
+    memcpy(g->spacing, r->gas_spacing, sizeof g->spacing);
+    void *dst[3] = {g->pressure, g->porosity, g->velocity};
+    for (int m = 0; m < 3; m++) {
+        hsize_t start[5] = {k, 0, 0, 0, 0}, count[5] = {1, c[2], c[1], c[0], 3};
+        if (read_block(r->gas_ds[m], H5T_NATIVE_DOUBLE, m == 2 ? 5 : 4, start, count, dst[m]) < 0)
+            return bad(r, err, "cannot read the gas fields of frame %zu", k);
+    }
+    return MIMAS_OK;
+}
+
 int mimas_native_read(mimas_native *r, size_t k, mimas_frame *f, mimas_error *err)
 {
     if (k >= r->frames)
@@ -651,6 +794,10 @@ int mimas_native_read(mimas_native *r, size_t k, mimas_frame *f, mimas_error *er
         rc = read_flat_frame(r, &r->walls, k, &f->walls, &mimas_walls_desc, err);
     else if (!rc)
         mimas_table_resize(&f->walls, &mimas_walls_desc, 0, NULL);
+    f->tube = r->tube;
+    f->gas.present = 0;
+    if (!rc && r->has_gas)
+        rc = read_gas(r, k, &f->gas, err);
     h5_quiet_end(&q);
     return rc;
 }

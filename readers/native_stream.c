@@ -56,9 +56,9 @@ static int open_stream(void **state, const char *const *inputs, size_t ninputs,
     return MIMAS_OK;
 }
 
-static int next(void *state, mimas_frame *f, mimas_error *err)
+/* Moves to the file holding the next frame; 0 when there is none. */
+static int advance(native_stream *s, mimas_error *err)
 {
-    native_stream *s = state;
     while (s->cur && s->frame >= mimas_native_frames(s->cur)) {
         mimas_native_close(s->cur);
         s->cur = NULL;
@@ -69,9 +69,37 @@ static int next(void *state, mimas_frame *f, mimas_error *err)
                 return rc;
         }
     }
-    if (!s->cur)
-        return MIMAS_END;
-    return mimas_native_read(s->cur, s->frame++, f, err);
+    return s->cur ? MIMAS_OK : MIMAS_END;
+}
+
+static int next(void *state, mimas_frame *f, mimas_error *err)
+{
+    native_stream *s = state;
+    int rc = advance(s, err);
+    return rc ? rc : mimas_native_read(s->cur, s->frame++, f, err);
+}
+
+static int peek(void *state, int64_t *step, double *time, mimas_error *err)
+{
+    native_stream *s = state;
+    int rc = advance(s, err);
+    mimas_frame_meta m;
+    if (!rc)
+        rc = mimas_native_frame_meta(s->cur, s->frame, &m, err);
+    if (!rc) {
+        *step = m.step;
+        *time = m.time;
+    }
+    return rc;
+}
+
+static int skip(void *state, mimas_error *err)
+{
+    native_stream *s = state;
+    int rc = advance(s, err);
+    if (!rc)
+        s->frame++;
+    return rc;
 }
 
 static void close_stream(void *state)
@@ -90,4 +118,5 @@ static const mimas_parameters *parameters(void *state)
 }
 
 const reader_backend reader_native = {"native", "mimas native (HDF5, H5MD 1.1)", probe,
-                                      open_stream, next, NULL, close_stream, parameters};
+                                      open_stream, next, NULL, close_stream, peek, skip,
+                                      parameters};

@@ -21,6 +21,8 @@ struct mimas_reader {
     char **inputs;   /* after '*' expansion */
     size_t ninputs;
     mimas_reader_options opt;
+    mimas_frame ahead;   /* a frame read by peek for a format that cannot peek */
+    int has_ahead;
 };
 
 void mimas_reader_options_default(mimas_reader_options *o)
@@ -116,6 +118,7 @@ void mimas_reader_close(mimas_reader *r)
     if (r->be && r->state)
         r->be->close(r->state);
     reader_free_names(r->inputs, r->ninputs);
+    mimas_frame_free(&r->ahead);
     free(r);
 }
 
@@ -130,6 +133,7 @@ int mimas_reader_open(mimas_reader **out, const char *const *inputs, size_t ninp
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
     if (o)
         r->opt = *o;
+    mimas_frame_init(&r->ahead);
     if (r->opt.density < 0 || r->opt.timestep < 0) {
         free(r);
         return mimas_error_set(err, MIMAS_EUSAGE, "density and time step must be positive");
@@ -150,7 +154,41 @@ int mimas_reader_open(mimas_reader **out, const char *const *inputs, size_t ninp
 
 int mimas_reader_next(mimas_reader *r, mimas_frame *f, mimas_error *err)
 {
+    if (r->has_ahead) {
+        /* hand over the frame read ahead; f's memory is kept for the next one */
+        mimas_frame t = *f;
+        *f = r->ahead;
+        r->ahead = t;
+        r->has_ahead = 0;
+        return MIMAS_OK;
+    }
     return r->be->next(r->state, f, err);
+}
+
+int mimas_reader_peek(mimas_reader *r, int64_t *step, double *time, mimas_error *err)
+{
+    if (!r->has_ahead && r->be->peek)
+        return r->be->peek(r->state, step, time, err);
+    if (!r->has_ahead) {
+        int rc = r->be->next(r->state, &r->ahead, err);
+        if (rc)
+            return rc;
+        r->has_ahead = 1;
+    }
+    *step = r->ahead.step;
+    *time = r->ahead.time;
+    return MIMAS_OK;
+}
+
+int mimas_reader_skip(mimas_reader *r, mimas_error *err)
+{
+    if (r->has_ahead) {
+        r->has_ahead = 0;
+        return MIMAS_OK;
+    }
+    if (r->be->skip)
+        return r->be->skip(r->state, err);
+    return r->be->next(r->state, &r->ahead, err);
 }
 
 const char *mimas_reader_format(const mimas_reader *r)

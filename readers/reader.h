@@ -5,6 +5,7 @@
 #define MIMAS_READER_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "error.h"
 #include "frame.h"
@@ -29,6 +30,11 @@ typedef struct mimas_reader_options {
     double timestep;                 /* dt: time = step * dt for dumps without ITEM: TIME
                                         (0: such frames have time NaN, "unknown") */
     int allow_missing_contacts;      /* skip frames that lack contact data */
+    /* told what the reader found out by itself (e.g. the columns of a
+     * LIGGGHTS local dump inferred from their count), one line naming the
+     * file; NULL: nobody is told */
+    void (*notify)(void *ctx, const char *message);
+    void *notify_ctx;
 } mimas_reader_options;
 
 void mimas_reader_options_default(mimas_reader_options *o);
@@ -40,6 +46,13 @@ int mimas_reader_open(mimas_reader **r, const char *const *inputs, size_t ninput
 /* Fills f with the next frame: MIMAS_OK, MIMAS_END after the last frame, or
  * an error whose message names the file and line. */
 int mimas_reader_next(mimas_reader *r, mimas_frame *f, mimas_error *err);
+/* The step and time of the next frame without taking it (MIMAS_OK,
+ * MIMAS_END or an error), and passing over the next frame.  Native files do
+ * both without reading the frame's arrays; other formats read the frame (so
+ * a following mimas_reader_next costs nothing). */
+int mimas_reader_peek(mimas_reader *r, int64_t *step, double *time, mimas_error *err);
+int mimas_reader_skip(mimas_reader *r, mimas_error *err);
+
 /* The detected format's name ("mimas native", "LAMMPS dump", "MercuryDPM"). */
 const char *mimas_reader_format(const mimas_reader *r);
 /* Frames dropped so far because their contact data were missing

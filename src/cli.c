@@ -1,8 +1,9 @@
 #include <config.h>
 
 #include "cli.h"
-
 #include "outfile.h"
+
+#include "parallel.h"
 
 #include <errno.h>
 #include <getopt.h>
@@ -80,11 +81,21 @@ static int input_option(const cli_command *cmd, cli_inputs *in, size_t k, const 
     return 1;
 }
 
+/* What a reader found out by itself, on standard error. */
+static void note(void *ctx, const char *message)
+{
+    fprintf(stderr, "mimas %s: %s\n", ((const cli_command *)ctx)->name, message);
+}
+
 int cli_open_inputs(const cli_command *cmd, cli_inputs *in, int argc, char **argv, int first,
                     mimas_reader **r)
 {
     if (first >= argc)
         return cli_fail(cmd, 1, "no input file (see mimas %s --help)", cmd->name);
+    if (!in->quiet) {
+        in->opt.notify = note;
+        in->opt.notify_ctx = (void *)cmd;
+    }
     mimas_error err;
     int rc = mimas_reader_open(r, (const char *const *)argv + first, (size_t)(argc - first),
                                &in->opt, &err);
@@ -95,6 +106,9 @@ int cli_open_inputs(const cli_command *cmd, cli_inputs *in, int argc, char **arg
 
 int cli_fail(const cli_command *cmd, int status, const char *fmt, ...)
 {
+    /* under MPI every rank agrees on the failure; one of them says it */
+    if (mimas_par_rank() != 0)
+        return status;
     va_list ap;
     fprintf(stderr, "mimas %s: ", cmd->name);
     va_start(ap, fmt);
@@ -211,7 +225,8 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler
         if (c == -1)
             break;
         if (c == 'h') {
-            cli_print_help(cmd, stdout);
+            if (mimas_par_rank() == 0)
+                cli_print_help(cmd, stdout);
             return -1;
         }
         if (c == '?')
@@ -321,6 +336,13 @@ int cli_window_time(const cli_command *cmd, cli_window *w, int from, const char 
     return 0;
 }
 
+int cli_window_every(const cli_command *cmd, cli_window *w, const char *arg)
+{
+    if (cli_parse_long(arg, &w->every) || w->every < 1)
+        return cli_fail(cmd, 1, "--every needs a positive whole number, not '%s'", arg);
+    return 0;
+}
+
 int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mimas_error *err)
 {
     if ((w->has_from || w->has_to) && isnan(f->time)) {
@@ -331,14 +353,6 @@ int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mima
     if ((w->has_from && f->time < w->from) || (w->has_to && f->time > w->to))
         return 0;
     return w->seen++ % (w->every > 1 ? w->every : 1) == 0;
-}
-
-void cli_print_value(FILE *out, double v)
-{
-    if (isnan(v))
-        fputs("\tnan", out);
-    else
-        fprintf(out, "\t%.10g", v);
 }
 
 char *cli_command_line(int argc, char **argv)
@@ -366,21 +380,38 @@ static double seconds(void)
 
 void cli_progress_start(cli_progress *p, const cli_inputs *in)
 {
-    p->on = !in->quiet && isatty(STDERR_FILENO);
+    p->on = !in->quiet && isatty(STDERR_FILENO) && mimas_par_rank() == 0;
     p->last = seconds();
+}
+
+/* Whether a progress line is due (on, and half a second since the last). */
+static int progress_due(cli_progress *p)
+{
+    if (!p->on)
+        return 0;
+    double now = seconds();
+    if (now - p->last < 0.5)
+        return 0;
+    p->last = now;
+    return 1;
 }
 
 void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, long long step,
                         double time)
 {
-    if (!p->on)
+    if (!progress_due(p))
         return;
-    double now = seconds();
-    if (now - p->last < 0.5)
-        return;
-    p->last = now;
     fprintf(stderr, "\rmimas %s: %zu frames (step %lld, time %g)   ", cmd->name, frames, step,
             time);
+    fflush(stderr);
+}
+
+void cli_progress_count(cli_progress *p, const cli_command *cmd, const char *what, size_t done,
+                        size_t total)
+{
+    if (!progress_due(p))
+        return;
+    fprintf(stderr, "\rmimas %s: %s %zu of %zu   ", cmd->name, what, done, total);
     fflush(stderr);
 }
 
@@ -398,9 +429,13 @@ int cli_output_open(cli_output *o, const char *path, mimas_error *err)
         return MIMAS_OK;
     }
     o->path = path;
-    o->direct = mimas_path_is_special(path);
-    snprintf(o->tmp, sizeof o->tmp, "%s.tmp%ld", path, (long)getpid());
-    o->fp = fopen(o->direct ? path : o->tmp, "w");
+    /* a device or a pipe takes the table as it comes: renamed onto, a
+     * finished file would replace it */
+    if (mimas_output_is_special(path))
+        o->tmp[0] = '\0';
+    else
+        snprintf(o->tmp, sizeof o->tmp, "%s.tmp%ld", path, (long)getpid());
+    o->fp = fopen(o->tmp[0] ? o->tmp : path, "w");
     if (!o->fp)
         return mimas_error_set(err, MIMAS_EIO, "%s: cannot write: %s", path, strerror(errno));
     return MIMAS_OK;
@@ -414,14 +449,11 @@ int cli_output_close(cli_output *o, int ok, mimas_error *err)
     if (!o->path) {
         if (ok && fflush(stdout) != 0)
             rc = mimas_error_set(err, MIMAS_EIO, "cannot write the table");
-    } else if (o->direct) {
-        if (fclose(o->fp) != 0 && ok)
-            rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", o->path);
     } else {
         int closed = fclose(o->fp) == 0;
-        if (ok && (!closed || rename(o->tmp, o->path) != 0))
+        if (ok && (!closed || (o->tmp[0] && rename(o->tmp, o->path) != 0)))
             rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", o->path);
-        if (!ok || rc)
+        if ((!ok || rc) && o->tmp[0])
             remove(o->tmp);
     }
     o->fp = NULL;

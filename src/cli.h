@@ -66,6 +66,9 @@ typedef struct cli_progress {
 void cli_progress_start(cli_progress *p, const cli_inputs *in);
 void cli_progress_frame(cli_progress *p, const cli_command *cmd, size_t frames, long long step,
                         double time);
+/* The same line for a count of things: "mimas CMD: WHAT DONE of TOTAL". */
+void cli_progress_count(cli_progress *p, const cli_command *cmd, const char *what, size_t done,
+                        size_t total);
 void cli_progress_done(cli_progress *p);
 
 /* A table written to standard output, or to a file under a temporary name
@@ -73,11 +76,10 @@ void cli_progress_done(cli_progress *p);
 typedef struct cli_output {
     FILE *fp;
     const char *path;   /* NULL: standard output */
-    int direct;         /* path is a device or pipe (/dev/stdout, a FIFO): written directly */
-    char tmp[4200];
+    char tmp[4200];     /* "": written straight to path (a device or a pipe) */
 } cli_output;
-/* path NULL or "-": standard output.  A path that is not a regular file
- * (/dev/null, /dev/stdout, a named pipe) is written directly, not replaced. */
+/* path NULL or "-": standard output; a path that is not a regular file
+ * (/dev/null, a pipe) is written straight through. */
 int cli_output_open(cli_output *o, const char *path, mimas_error *err);
 /* Finishes the table: with ok, flushes (and renames the file into place);
  * else removes the temporary file.  Returns MIMAS_OK or a write error. */
@@ -100,6 +102,9 @@ typedef struct cli_window {
 /* --from (from = 1) or --to TIME into the window; prints the usage error
  * and returns 1 on a bad time. */
 int cli_window_time(const cli_command *cmd, cli_window *w, int from, const char *arg);
+/* --every K into the window; prints the usage error and returns 1 unless
+ * K is a positive whole number. */
+int cli_window_every(const cli_command *cmd, cli_window *w, const char *arg);
 /* 1 if frame f is used, 0 if not; MIMAS_EUSAGE (negated: -1) with err set
  * when the window needs a time the frame (of input) does not have. */
 int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mimas_error *err);
@@ -108,9 +113,6 @@ int cli_window_take(cli_window *w, const mimas_frame *f, const char *input, mima
  * output) through cli_output: nothing is left at path on failure. */
 int cli_write_table(const char *path, void (*write)(FILE *fp, const void *ctx), const void *ctx,
                     mimas_error *err);
-
-/* A table cell: a tab, then v with 10 significant digits, or "nan". */
-void cli_print_value(FILE *out, double v);
 
 /* "mimas ARGS..." (malloc'd), for provenance attributes. */
 char *cli_command_line(int argc, char **argv);

@@ -84,7 +84,11 @@ int cli_study_take(cli_study *s, size_t k, const mimas_parameters *ps, const cha
     int rc = mimas_parameters_copy(&s->params[k], ps, err);
     if (rc || s->values)
         return rc;
-    return mimas_study_value(ps, source, s->name, &s->x[k], err);
+    rc = mimas_study_value(ps, source, s->name, &s->x[k], err);
+    const mimas_parameter *p = NULL;
+    if (!rc && k == 0 && mimas_parameters_find(ps, s->name, &p, NULL) == MIMAS_OK && p)
+        snprintf(s->unit, sizeof s->unit, "%s", p->unit);
+    return rc;
 }
 
 void cli_study_note(const cli_command *cmd, const cli_study *s)
@@ -114,41 +118,65 @@ int cli_study_trend(const cli_study *s, const double *y, const double *e, mimas_
     return mimas_study_trend(s->x, y, e, s->nruns, s->lo, s->hi, t, err);
 }
 
-static void write_trends(FILE *out, const cli_trend_row *rows, size_t n)
+void cli_study_column(cli_table *t, const cli_study *s)
 {
-    fputs("table\tparameter\tlo\thi\tnruns\tA1\tA1_err\tA2\tA2_err\tchange_first\t"
-          "change_first_err\tchange_rest\tchange_rest_err\tstatus\n", out);
-    for (size_t k = 0; k < n; k++) {
-        const mimas_trend *t = &rows[k].trend;
-        fprintf(out, "%s\t%s", rows[k].table, rows[k].parameter);
-        cli_print_value(out, rows[k].lo);
-        cli_print_value(out, rows[k].hi);
-        fprintf(out, "\t%zu", t->line.npts);
-        const double v[8] = {t->line.p[1], t->line.err[1], t->line.p[0], t->line.err[0],
-                             t->change_first, t->change_first_err, t->change_rest,
-                             t->change_rest_err};
-        for (int q = 0; q < 8; q++)
-            cli_print_value(out, v[q]);
-        fprintf(out, "\t%s\n", mimas_fit_status_name(t->line.status));
-    }
+    cli_table_column(t, "study", s->unit[0] ? s->unit : NULL);
 }
 
-int cli_study_write(const cli_study *s, const char *output,
-                    void (*write_runs)(FILE *fp, const void *ctx), const void *ctx,
+static void write_trends(FILE *out, const cli_table_options *to, const cli_trend_row *rows,
+                         size_t n)
+{
+    cli_table t;
+    cli_table_start(&t, out, to);
+    static const char *const cols[] = {"table", "parameter", "lo", "hi", "nruns", "A1",
+                                       "A1_err", "A2", "A2_err", "change_first",
+                                       "change_first_err", "change_rest", "change_rest_err",
+                                       "status"};
+    for (size_t k = 0; k < sizeof cols / sizeof cols[0]; k++)
+        cli_table_column(&t, cols[k], k >= 9 && k <= 12 ? "%" : NULL);
+    cli_table_header_end(&t);
+    for (size_t k = 0; k < n; k++) {
+        const mimas_trend *tr = &rows[k].trend;
+        cli_table_text(&t, rows[k].table);
+        cli_table_text(&t, rows[k].parameter);
+        cli_table_double(&t, rows[k].lo);
+        cli_table_double(&t, rows[k].hi);
+        cli_table_int(&t, (long long)tr->line.npts);
+        const double v[8] = {tr->line.p[1], tr->line.err[1], tr->line.p[0], tr->line.err[0],
+                             tr->change_first, tr->change_first_err, tr->change_rest,
+                             tr->change_rest_err};
+        for (int q = 0; q < 8; q++)
+            cli_table_double(&t, v[q]);
+        cli_table_text(&t, mimas_fit_status_name(tr->line.status));
+        cli_table_row_end(&t);
+    }
+    cli_table_end(&t);
+}
+
+int cli_study_write(const cli_study *s, const char *output, const cli_table_options *to,
+                    void (*write_runs)(cli_table *t, const void *ctx), const void *ctx,
                     const cli_trend_row *rows, size_t nrows, mimas_error *err)
 {
     cli_output runs = {0}, trends = {0};
     int rc = cli_output_open(&runs, output, err);
     if (!rc && s->trends)
         rc = cli_output_open(&trends, s->trends, err);
+    int bad = 0;
     if (!rc) {
-        write_runs(runs.fp, ctx);
+        cli_table t;
+        cli_table_start(&t, runs.fp, to);
+        write_runs(&t, ctx);
+        cli_table_end(&t);
         FILE *fp = s->trends ? trends.fp : runs.fp;
         if (!s->trends)
             fputs("\n\n", fp);
-        write_trends(fp, rows, nrows);
+        write_trends(fp, to, rows, nrows);
+        bad = ferror(runs.fp) || (s->trends && ferror(trends.fp));
     }
-    int c1 = s->trends ? cli_output_close(&trends, !rc, err) : MIMAS_OK;
-    int c2 = cli_output_close(&runs, !rc && !c1, err);
+    int c1 = s->trends ? cli_output_close(&trends, !rc && !bad, err) : MIMAS_OK;
+    int c2 = cli_output_close(&runs, !rc && !bad && !c1, err);
+    if (!rc && bad && !c1 && !c2)
+        rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table",
+                             output ? output : "-");
     return rc ? rc : c1 ? c1 : c2;
 }

@@ -10,6 +10,7 @@
 #include <stdio.h>
 
 #include "cli.h"
+#include "cli_table.h"
 #include "parameters.h"
 #include "study.h"
 
@@ -33,6 +34,7 @@ typedef struct cli_study {
     double *x;                /* the runs' study values */
     size_t nruns;
     mimas_parameters *params; /* the runs' parameters (cli_study_take) */
+    char unit[24];            /* the study variable's unit ("" if none or unknown) */
 } cli_study;
 
 void cli_study_init(cli_study *s);
@@ -68,12 +70,15 @@ typedef struct cli_trend_row {
     mimas_trend trend;
 } cli_trend_row;
 
-/* Writes the runs' table (write_runs) to output and the trends table
- * (docs/study.md: table parameter lo hi nruns A1 A1_err A2 A2_err
- * change_first change_first_err change_rest change_rest_err status) to
- * --trends or after it, without partial files. */
-int cli_study_write(const cli_study *s, const char *output,
-                    void (*write_runs)(FILE *fp, const void *ctx), const void *ctx,
+/* The first column of a study's runs table: "study", with the variable's unit. */
+void cli_study_column(cli_table *t, const cli_study *s);
+/* Writes the runs' table (write_runs writes its header and rows into t) to
+ * output and the trends table (docs/study.md: table parameter lo hi nruns A1
+ * A1_err A2 A2_err change_first change_first_err change_rest change_rest_err
+ * status) to --trends or after it, both in the format of to (--csv,
+ * --digits, --units-header), without partial files. */
+int cli_study_write(const cli_study *s, const char *output, const cli_table_options *to,
+                    void (*write_runs)(cli_table *t, const void *ctx), const void *ctx,
                     const cli_trend_row *rows, size_t nrows, mimas_error *err);
 
 #endif

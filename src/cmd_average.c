@@ -9,17 +9,21 @@
 #include <unistd.h>
 
 #include "average.h"
+#include "cli_frames.h"
+#include "cli_table.h"
 #include "commands.h"
 #include "output_h5.h"
 #include "fields.h"
+#include "parallel.h"
 #include "reader.h"
 
 static const cli_option options[] = {
     {"grid", 0, "SPEC", "none, x=LO:HI:N[,y=..][,z=..], or r=LO:HI:N[,phi=LO:HI:N][,z=LO:HI:N]"},
-    {"weight", 0, "SPEC", "bins (exact overlaps), bins:center, gauss:w=W[,cutoff=C], lucy:c=C, "
-                          "shepard:w=W[,cutoff=C], voronoi (per-particle values of mimas "
-                          "voronoi -o, by the centre's cell), voronoi:w=W[,cutoff=C] (by a "
-                          "Gaussian)"},
+    {"weight", 0, "SPEC", "bins (exact overlaps), bins:center, gauss:w=W[,cutoff=C] (the "
+                          "Gaussian cut at C W, default 3, renormalised; ,shift: shifted to 0 "
+                          "there), lucy:c=C, shepard:w=W[,cutoff=C], voronoi (per-particle "
+                          "values of mimas voronoi -o, by the centre's cell), "
+                          "voronoi:w=W[,cutoff=C] (by a Gaussian)"},
     {"fields", 0, "LIST", "fields to write (comma list; 'stress' selects stress_*; default all)"},
     {"axis", 0, "X0,Y0,Z0,DX,DY,DZ", "axis of cylindrical grids (default: z through the origin)"},
     {"from", 0, "T0", "first time to use (s)"},
@@ -40,10 +44,13 @@ static const cli_option options[] = {
                          "mean diameter)"},
     {"list-fields", 0, NULL, "print the fields with their units and definitions (Markdown) and "
                              "exit"},
+    CLI_TABLE_BLOCKS_OPTION,
+    CLI_TABLE_OPTIONS,
 };
 
 enum { O_GRID, O_WEIGHT, O_FIELDS, O_AXIS, O_FROM, O_TO, O_EVERY, O_TYPES, O_EXCLUDE,
-       O_ERRORS, O_PER_FRAME, O_OUTPUT, O_TSV, O_THREADS, O_DIAMETER, O_LIST };
+       O_ERRORS, O_PER_FRAME, O_OUTPUT, O_TSV, O_THREADS, O_DIAMETER, O_LIST, O_BLOCKS,
+       O_TABLE };
 
 typedef struct average_args {
     const cli_command *cmd;
@@ -55,6 +62,7 @@ typedef struct average_args {
     int32_t types[64];
     size_t ntypes;
     int exclude, types_given, list, per_frame;
+    cli_table_options table;
 } average_args;
 
 static int parse_types(average_args *a, const char *arg, const char *opt)
@@ -75,10 +83,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_AXIS: a->axis = arg; return 0;
     case O_FROM:
     case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
-    case O_EVERY:
-        if (cli_parse_long(arg, &a->window.every) || a->window.every < 1)
-            return cli_fail(a->cmd, 1, "--every needs a positive whole number, not '%s'", arg);
-        return 0;
+    case O_EVERY: return cli_window_every(a->cmd, &a->window, arg);
     case O_TYPES: return parse_types(a, arg, "types");
     case O_EXCLUDE: a->exclude = 1; return parse_types(a, arg, "exclude-types");
     case O_ERRORS: a->errors = 1; return 0;
@@ -91,8 +96,9 @@ static int on_option(void *ctx, size_t opt, const char *arg)
         return 0;
     case O_LIST: a->list = 1; return 0;
     case O_THREADS: return cli_parse_threads(a->cmd, arg, &a->threads);
+    case O_BLOCKS: a->table.blocks = 1; return 0;
+    default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
-    return 1;
 }
 
 /* Which derived columns to write: all that exist on this grid, or those the
@@ -127,46 +133,48 @@ static int choose_fields(average_args *a, int cyl, unsigned char *want)
     return rc;
 }
 
-/* Full precision; "nan" where a field is undefined (docs/fields.md). */
-static void print_value(FILE *out, const char *sep, double v)
-{
-    if (isnan(v))
-        fprintf(out, "%snan", sep);
-    else
-        fprintf(out, "%s%.17g", sep, v);
-}
-
-static void write_header(FILE *out, const mimas_grid *g, int grid_none, int cyl,
+static void write_header(cli_table *t, const mimas_grid *g, int grid_none, int cyl,
                          const unsigned char *want, int errors, int per_frame)
 {
-    const char *sep = "";
     if (per_frame) {
-        fprintf(out, "step\ttime");
-        sep = "\t";
+        cli_table_column(t, "step", NULL);
+        cli_table_column(t, "time", "s");
     }
     for (int d = 0; d < 3 && !grid_none; d++)
-        if (g->gridded[d]) {
-            fprintf(out, "%s%s", sep, mimas_grid_coord_name(g, d));
-            sep = "\t";
-        }
+        if (g->gridded[d])
+            cli_table_column(t, mimas_grid_coord_name(g, d),
+                             cyl && d == 1 ? "rad" : "m");
     for (size_t k = 0; k < mimas_fields_count(); k++) {
         if (!want[k])
             continue;
-        fprintf(out, "%s%s", sep, mimas_field_name(k, cyl));
-        sep = "\t";
-        if (errors)
-            fprintf(out, "\t%s_sem", mimas_field_name(k, cyl));
+        const char *name = mimas_field_name(k, cyl), *unit = mimas_field(k)->unit;
+        cli_table_column(t, name, unit);
+        if (errors) {
+            char sem[80];
+            snprintf(sem, sizeof sem, "%s_sem", name);
+            cli_table_column(t, sem, unit);
+        }
     }
-    fputc('\n', out);
+    cli_table_header_end(t);
 }
 
-/* One row per cell; with frame (not NULL) the rows start with its step and time. */
-static int write_rows(FILE *out, const mimas_average *avg, int grid_none,
+/* One row per cell ("nan" where a field is undefined, docs/fields.md); with
+ * frame (not NULL) the rows start with its step and time.  With blocks, a
+ * blank line ends each row of a grid with two or more gridded directions,
+ * and two end each frame. */
+static int write_rows(cli_table *t, const mimas_average *avg, int grid_none,
                       const unsigned char *want, int errors, const mimas_frame *frame)
 {
     const mimas_grid *g = mimas_average_grid(avg);
     size_t nf = mimas_fields_count();
     size_t cells = grid_none ? 1 : mimas_grid_cells(g);
+    int fast = -1, gridded = 0;  /* the fastest gridded direction */
+    for (int d = 0; d < 3 && !grid_none; d++)
+        if (g->gridded[d]) {
+            gridded++;
+            if (fast < 0)
+                fast = d;
+        }
     double *mean = malloc(cells * nf * sizeof *mean), *sd = malloc(cells * nf * sizeof *sd),
            *count = malloc(cells * nf * sizeof *count);
     int rc = mean && sd && count ? mimas_average_fields(avg, mean, sd, count) : -1;
@@ -174,32 +182,35 @@ static int write_rows(FILE *out, const mimas_average *avg, int grid_none,
         double ctr[3];
         if (!grid_none)
             mimas_grid_cell_centre(g, cell, ctr);
-        const char *sep = "";
         if (frame) {
-            fprintf(out, "%lld", (long long)frame->step);
-            print_value(out, "\t", frame->time);
-            sep = "\t";
+            cli_table_int(t, (long long)frame->step);
+            cli_table_double(t, frame->time);
         }
         for (int d = 0; d < 3 && !grid_none; d++)
-            if (g->gridded[d]) {
-                print_value(out, sep, ctr[d]);
-                sep = "\t";
-            }
+            if (g->gridded[d])
+                cli_table_double(t, ctr[d]);
         const double *m = &mean[cell * nf], *s = &sd[cell * nf], *n = &count[cell * nf];
         for (size_t k = 0; k < nf; k++) {
             if (!want[k])
                 continue;
-            print_value(out, sep, m[k]);
-            sep = "\t";
+            cli_table_double(t, m[k]);
             if (errors)
-                print_value(out, sep, n[k] > 1 ? s[k] / sqrt(n[k]) : NAN);
+                cli_table_double(t, n[k] > 1 ? s[k] / sqrt(n[k]) : NAN);
         }
-        fputc('\n', out);
+        cli_table_row_end(t);
+        int idx[3] = {0, 0, 0};
+        if (!grid_none)
+            mimas_grid_unindex(g, cell, idx);
+        int last = cell + 1 == cells;
+        if (frame && last)
+            cli_table_block_end(t, 1);
+        else if (gridded >= 2 && idx[fast] == g->n[fast] - 1)
+            cli_table_block_end(t, 0);
     }
     free(mean);
     free(sd);
     free(count);
-    return rc || ferror(out) ? -1 : 0;
+    return rc || ferror(t->fp) ? -1 : 0;
 }
 
 /* The field table as docs/fields.md shows it. */
@@ -211,6 +222,64 @@ static void list_fields(void)
         const char *c = mimas_field_name(k, 0), *y = mimas_field_name(k, 1);
         printf("| %s | %s | %s | %s |\n", c ? c : "-", y ? y : "-", f->unit, f->meaning);
     }
+}
+
+/* ---- frames split over MPI ranks (docs/parallel.md) ---- */
+/* --per-frame: one frame's average with its step and time, written on rank 0
+ * in frame order. */
+typedef struct per_frame_sink {
+    const mimas_average_options *o;
+    int cyl;
+    const unsigned char *want;
+    cli_table *tw;          /* the table, or NULL */
+    mimas_fields_file *ff;  /* -o, or NULL */
+    mimas_average *other;   /* a frame's average unpacked on rank 0 */
+    int header_done;
+} per_frame_sink;
+
+static int pack_frame(const mimas_average *one, const mimas_frame *f, mimas_bytes *out,
+                      mimas_error *err)
+{
+    int rc = mimas_average_pack(one, out, err);
+    size_t head = sizeof f->step + sizeof f->time;
+    if (!rc && out->n + head > out->cap) {
+        unsigned char *p = realloc(out->data, out->n + head);
+        if (!p)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        out->data = p;
+        out->cap = out->n + head;
+    }
+    if (!rc) {
+        memcpy(out->data + out->n, &f->step, sizeof f->step);
+        memcpy(out->data + out->n + sizeof f->step, &f->time, sizeof f->time);
+        out->n += head;
+    }
+    return rc;
+}
+
+static int write_frame(void *ctx, size_t position, const unsigned char *data, size_t n,
+                       mimas_error *err)
+{
+    (void)position;
+    per_frame_sink *s = ctx;
+    mimas_frame f; /* only step and time */
+    size_t head = sizeof f.step + sizeof f.time;
+    if (n < head)
+        return mimas_error_set(err, MIMAS_EDATA, "a per-frame result is truncated");
+    memcpy(&f.step, data + n - head, sizeof f.step);
+    memcpy(&f.time, data + n - sizeof f.time, sizeof f.time);
+    mimas_average_reset(s->other);
+    int rc = mimas_average_merge(s->other, data, n - head, err);
+    if (!rc && s->tw) {
+        if (!s->header_done++)
+            write_header(s->tw, mimas_average_grid(s->other), s->o->grid_none, s->cyl,
+                         s->want, 0, 1);
+        if (write_rows(s->tw, s->other, s->o->grid_none, s->want, 0, &f))
+            rc = mimas_error_set(err, MIMAS_EIO, "cannot write the table");
+    }
+    if (!rc && s->ff)
+        rc = mimas_fields_append_frame(s->ff, s->other, f.step, f.time, err);
+    return rc;
 }
 
 static int run(const cli_command *cmd, int argc, char **argv)
@@ -255,72 +324,85 @@ static int run(const cli_command *cmd, int argc, char **argv)
         cli_inputs_free(&in);
         return rc < 0 ? 0 : rc;
     }
-    /* outputs: the table (a temporary name renamed at the end, or standard
-     * output) unless only -o was asked for; the HDF5 file */
+    /* outputs, on rank 0 only (under MPI the others only compute): the table
+     * (a temporary name renamed at the end, or standard output) unless only
+     * -o was asked for; the HDF5 file */
+    int root = mimas_par_rank() == 0;
     cli_output table = {0};
     int status = MIMAS_OK;
-    if (a.tsv || !a.output)
+    if (root && (a.tsv || !a.output))
         status = cli_output_open(&table, a.tsv, &err);
     FILE *out = table.fp;
-    mimas_fields_file *ff = NULL;
-    if (!status && a.output)
-        status = mimas_fields_open(&ff, a.output, &err);
-    if (!status && ff)
-        status = mimas_fields_parameters(ff, "scenario", mimas_reader_parameters(r), &err);
+    cli_table tw;
+    cli_table_start(&tw, out, &a.table);
+    per_frame_sink sink = {&o, cyl, want, out ? &tw : NULL, NULL, NULL, 0};
+    if (!status && root && a.output)
+        status = mimas_fields_open(&sink.ff, a.output, want, &err);
+    if (!status && sink.ff)
+        status = mimas_fields_parameters(sink.ff, "scenario", mimas_reader_parameters(r), &err);
     mimas_average *one = NULL; /* the current frame alone (--per-frame) */
+    mimas_par_ordered *order = NULL;
     if (!status && a.per_frame) {
         mimas_average_options o1 = o;
         o1.spread = 0;
         status = mimas_average_create(&one, &o1, &err);
+        if (!status && root)
+            status = mimas_average_create(&sink.other, &o1, &err);
+        if (!status)
+            status = mimas_par_ordered_open(&order, write_frame, &sink, &err);
     }
+    status = mimas_par_agree(status, SIZE_MAX, &err);
     mimas_frame f;
     mimas_frame_init(&f);
-    int header_done = 0;
+    mimas_bytes packed = {0};
     cli_progress prog;
     cli_progress_start(&prog, &in);
-    while (!status && (status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
-        int take = cli_window_take(&a.window, &f, argv[first], &err);
-        if (take < 0) {
-            status = MIMAS_EUSAGE;
-            break;
-        }
-        if (!take)
-            continue;
+    cli_frames frames;
+    cli_frames_init(&frames, r, &a.window, argv[first]);
+    while (!status && (status = cli_frames_next(&frames, &f, &err)) == MIMAS_OK) {
         status = mimas_average_add(avg, &f, &err);
-        cli_progress_frame(&prog, cmd, mimas_average_frames(avg), (long long)f.step, f.time);
+        cli_progress_frame(&prog, cmd, frames.position + 1, (long long)f.step, f.time);
         if (!status && one) {
             mimas_average_reset(one);
             status = mimas_average_add(one, &f, &err);
-            if (!status && out) {
-                if (!header_done++)
-                    write_header(out, mimas_average_grid(one), o.grid_none, cyl, want, 0, 1);
-                if (write_rows(out, one, o.grid_none, want, 0, &f))
-                    status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
-            }
-            if (!status && ff)
-                status = mimas_fields_append_frame(ff, one, f.step, f.time, &err);
+            if (!status)
+                status = pack_frame(one, &f, &packed, &err);
+            if (!status)
+                status = mimas_par_ordered_put(order, frames.position, &packed, &err);
         }
-        if (status && status != MIMAS_EIO)
+        if (status && status != MIMAS_EIO && status != MIMAS_END)
             mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
     }
     cli_progress_done(&prog);
+    if (order)
+        status = mimas_par_ordered_finish(order, status, frames.position, &err);
+    else
+        status = mimas_par_agree(status, frames.position, &err);
+    if (status == MIMAS_END)
+        status = mimas_average_reduce(avg, &err);
+    if (status == MIMAS_OK)
+        status = MIMAS_END;
     size_t skipped = mimas_reader_skipped(r);
+    mimas_bytes_free(&packed);
     mimas_frame_free(&f);
     mimas_reader_close(r);
     cli_inputs_free(&in);
     mimas_average_free(one);
-    if (skipped && status == MIMAS_END)
+    mimas_average_free(sink.other);
+    mimas_par_ordered_free(order);
+    mimas_fields_file *ff = sink.ff;
+    if (root && skipped && status == MIMAS_END)
         fprintf(stderr, "mimas average: skipped %zu frames whose contact data were missing\n",
                 skipped);
-    if (status == MIMAS_END && mimas_average_frames(avg) == 0)
+    if (status == MIMAS_END && frames.selected == 0)
         status = mimas_error_set(&err, MIMAS_EDATA, "%s: no frame in the selected time range",
                                  argv[first]);
-    if (status == MIMAS_END && out && !a.per_frame) {
-        write_header(out, mimas_average_grid(avg), o.grid_none, cyl, want, a.errors, 0);
-        if (write_rows(out, avg, o.grid_none, want, a.errors, NULL))
+    if (root && status == MIMAS_END && out && !a.per_frame) {
+        write_header(&tw, mimas_average_grid(avg), o.grid_none, cyl, want, a.errors, 0);
+        if (write_rows(&tw, avg, o.grid_none, want, a.errors, NULL))
             status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
     }
-    if (status == MIMAS_END && ff) {
+    if (root && status == MIMAS_END && ff) {
         char *line = cli_command_line(argc, argv);
         status = mimas_fields_finish(ff, avg, line, &err);
         ff = NULL;
@@ -329,10 +411,13 @@ static int run(const cli_command *cmd, int argc, char **argv)
             status = MIMAS_END;
     }
     mimas_average_free(avg);
+    cli_table_end(&tw);
     int closed = cli_output_close(&table, status == MIMAS_END, &err);
     if (closed)
         status = closed;
     mimas_fields_abort(ff);
+    /* a failure of rank 0's output reaches the others too */
+    status = mimas_par_agree(status, SIZE_MAX, &err);
     if (status != MIMAS_END) {
         if (status == MIMAS_EIO && a.output && !strstr(err.msg, a.output))
             mimas_error_prefix(&err, "%s", a.output);
@@ -346,14 +431,16 @@ const cli_command cmd_average = {
     "continuum fields (density, velocity, stress, fabric, ...) on a grid",
     "[options] INPUT... --grid SPEC --weight SPEC",
     "Coarse-grains particles and contacts onto a Cartesian or cylindrical grid\n"
-    "(docs/theory.md §6): number and mass density, solid fraction, velocity,\n"
-    "kinetic, contact and total stress (compression positive), pressure, shear\n"
-    "stress, stress ratio, granular temperature, coordination number, fabric and\n"
-    "wall force density (docs/fields.md).  Time averages are taken of the primary\n"
-    "sums; --errors adds the standard error over frames.  Writes a TSV table,\n"
-    "one row per cell: the gridded cell-centre coordinates, then the fields.  The\n"
-    "run parameters of the input (mimas simulate's scenario) go into the field\n"
-    "file of -o.",
+    "(docs/theory.md §6): number and mass density, solid fraction, velocity, kinetic,\n"
+    "contact and total stress (compression positive), pressure, shear stress,\n"
+    "stress ratio, granular temperature, coordination number, fabric and wall\n"
+    "force density (docs/fields.md).  Time averages are taken of the primary\n"
+    "sums; --errors adds the standard error over frames.  Kernels are integrated\n"
+    "over the directions a grid leaves out, and averaged exactly over the azimuth\n"
+    "on cylindrical grids without phi cells.  Writes a TSV table, one row per\n"
+    "cell: the gridded cell-centre coordinates, then the fields.  The run\n"
+    "parameters of the input (mimas simulate's scenario) go into the field file\n"
+    "of -o.",
     options,
     sizeof options / sizeof options[0],
     1,

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cli_study.h"
+#include "cli_table.h"
 #include "commands.h"
 #include "energy.h"
 #include "native.h"
@@ -24,10 +25,12 @@ static const cli_option options[] = {
     {"plot", 0, "FILE.png", "with a study: the mean total energy and its coefficient of "
                             "variation against the study variable (gnuplot)"},
     {"output", 'o', "FILE", "write the table to FILE (default: standard output)"},
+    CLI_TABLE_OPTIONS,
     CLI_STUDY_OPTIONS,
 };
 
-enum { O_FROM, O_TO, O_COLUMNS, O_TIMESTEP, O_PLOT, O_OUTPUT, O_STUDY };
+enum { O_FROM, O_TO, O_COLUMNS, O_TIMESTEP, O_PLOT, O_OUTPUT, O_TABLE,
+       O_STUDY = O_TABLE + CLI_TABLE_NOPTIONS };
 
 typedef struct energy_args {
     const cli_command *cmd;
@@ -35,6 +38,7 @@ typedef struct energy_args {
     cli_window window;
     char columns[512];
     const char *plot, *output;
+    cli_table_options table;
     cli_study study;
 } energy_args;
 
@@ -74,32 +78,57 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_PLOT: a->plot = arg; return 0;
     case O_OUTPUT: a->output = arg; return 0;
     }
+    if (opt < O_STUDY)
+        return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     return cli_study_option(a->cmd, &a->study, opt - O_STUDY, arg);
 }
 
-#define HEADER "energy\tmean\tstd\tcv_percent\tframes\tfrom\tto\n"
+/* The header of the table; with study, first the study column. */
+static void write_header(cli_table *t, const cli_study *study)
+{
+    if (study)
+        cli_study_column(t, study);
+    static const char *const cols[] = {"energy", "mean", "std", "cv_percent", "frames", "from",
+                                       "to"};
+    static const char *const units[] = {NULL, "J", "J", "%", NULL, "s", "s"};
+    for (int k = 0; k < 7; k++)
+        cli_table_column(t, cols[k], units[k]);
+    cli_table_header_end(t);
+}
 
-static void write_rows(FILE *out, const mimas_energy *e, const char *prefix)
+/* A row per quantity present; with study, first the study column holding *study. */
+static void write_rows(cli_table *t, const mimas_energy *e, const double *study)
 {
     for (int q = 0; q < MIMAS_ENERGY_N; q++) {
         const mimas_energy_stat *s = &e->q[q];
         if (!s->present)
             continue;
-        fprintf(out, "%s%s", prefix, mimas_energy_name(q));
-        cli_print_value(out, s->mean);
-        cli_print_value(out, s->sd);
-        cli_print_value(out, 100 * s->cv);
-        fprintf(out, "\t%zu", s->n);
-        cli_print_value(out, e->from);
-        cli_print_value(out, e->to);
-        fputc('\n', out);
+        if (study)
+            cli_table_double(t, *study);
+        cli_table_text(t, mimas_energy_name(q));
+        cli_table_double(t, s->mean);
+        cli_table_double(t, s->sd);
+        cli_table_double(t, 100 * s->cv);
+        cli_table_int(t, (long long)s->n);
+        cli_table_double(t, e->from);
+        cli_table_double(t, e->to);
+        cli_table_row_end(t);
     }
 }
 
+typedef struct energy_table {
+    const energy_args *a;
+    const mimas_energy *e;
+} energy_table;
+
 static void write_table(FILE *out, const void *ctx)
 {
-    fputs(HEADER, out);
-    write_rows(out, ctx, "");
+    const energy_table *et = ctx;
+    cli_table t;
+    cli_table_start(&t, out, &et->a->table);
+    write_header(&t, NULL);
+    write_rows(&t, et->e, NULL);
+    cli_table_end(&t);
 }
 
 /* ---- a study ---- */
@@ -111,15 +140,12 @@ typedef struct energy_study {
     size_t ntrends;
 } energy_study;
 
-static void write_runs(FILE *out, const void *ctx)
+static void write_runs(cli_table *t, const void *ctx)
 {
     const energy_study *st = ctx;
-    fputs("study\t" HEADER, out);
-    for (size_t k = 0; k < st->study->nruns; k++) {
-        char prefix[40];
-        snprintf(prefix, sizeof prefix, "%.10g\t", st->study->x[k]);
-        write_rows(out, &st->runs[k], prefix);
-    }
+    write_header(t, st->study);
+    for (size_t k = 0; k < st->study->nruns; k++)
+        write_rows(t, &st->runs[k], &st->study->x[k]);
 }
 
 /* The parameters of a run: a native file's, none for a log. */
@@ -222,7 +248,8 @@ static int run_study(energy_args *a, char **inputs, mimas_error *err)
     if (!status && a->plot)
         status = plot_study(a, &st, y, err);
     if (!status)
-        status = cli_study_write(s, a->output, write_runs, &st, st.trends, st.ntrends, err);
+        status = cli_study_write(s, a->output, &a->table, write_runs, &st, st.trends,
+                                 st.ntrends, err);
     free(st.runs);
     free(y);
     return status;
@@ -256,8 +283,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
     } else {
         mimas_energy e;
         status = mimas_energy_of(argv[first], &a.o, &e, &err);
+        energy_table et = {&a, &e};
         if (!status)
-            status = cli_write_table(a.output, write_table, &e, &err);
+            status = cli_write_table(a.output, write_table, &et, &err);
     }
     cli_study_free(&a.study);
     if (status)

@@ -20,6 +20,10 @@ typedef struct summary {
     int box_changes;
     int has_contacts, has_walls;
     char quantities[3][1024];  /* particles, contacts, wall contacts */
+    mimas_tube tube;           /* of the first frame */
+    int has_gas;
+    size_t gas_cells[3];
+    double gas_origin[3], gas_spacing[3];
 } summary;
 
 static void widen(range *r, size_t v, int first)
@@ -65,6 +69,13 @@ static void note_quantities(summary *s, const mimas_frame *f)
     quantities(s->quantities[2], sizeof s->quantities[2], &f->walls, &mimas_walls_desc);
     s->has_contacts = f->has_contacts;
     s->has_walls = f->has_walls;
+    s->tube = f->tube;
+    s->has_gas = f->gas.present;
+    if (f->gas.present) {
+        memcpy(s->gas_cells, f->gas.cells, sizeof s->gas_cells);
+        memcpy(s->gas_origin, f->gas.origin, sizeof s->gas_origin);
+        memcpy(s->gas_spacing, f->gas.spacing, sizeof s->gas_spacing);
+    }
 }
 
 static void print_box(const char *label, const mimas_box *b)
@@ -117,6 +128,16 @@ static void print_summary(const summary *s, const char *format, size_t skipped)
         printf("%-21s%s\n", "contact quantities:", s->quantities[1]);
     if (s->has_walls)
         printf("%-21s%s\n", "wall quantities:", s->quantities[2]);
+    const mimas_tube *t = &s->tube;
+    if (t->present)
+        printf("%-21s axis from (%.9g, %.9g, %.9g) m along (%.9g, %.9g, %.9g), radius %.9g m, "
+               "length %.9g m\n", "tube:", t->origin[0], t->origin[1], t->origin[2],
+               t->direction[0], t->direction[1], t->direction[2], t->radius, t->length);
+    if (s->has_gas)
+        printf("%-21s pressure porosity velocity on %zu x %zu x %zu cells of %.9g x %.9g x %.9g m "
+               "from (%.9g, %.9g, %.9g) m\n", "gas fields:", s->gas_cells[0], s->gas_cells[1],
+               s->gas_cells[2], s->gas_spacing[0], s->gas_spacing[1], s->gas_spacing[2],
+               s->gas_origin[0], s->gas_origin[1], s->gas_origin[2]);
 }
 
 /* One native file: counts from the per-frame index, no frame data but the first. */

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cli_study.h"
+#include "cli_table.h"
 #include "commands.h"
 #include "fieldset.h"
 #include "rheology.h"
@@ -29,17 +30,19 @@ static const cli_option options[] = {
     {"plot", 0, "PREFIX", "draw PREFIX.yield.png, PREFIX.mu_I.png and PREFIX.eta.png (gnuplot); "
                           "with a study PREFIX.study.png"},
     {"output", 'o', "FILE", "write the table to FILE (default: standard output)"},
+    CLI_TABLE_OPTIONS,
     CLI_STUDY_OPTIONS,
 };
 
 enum { O_MIN_RATE, O_P_RANGE, O_RATE_WINDOWS, O_I_WINDOWS, O_DEFINITION, O_PLOT, O_OUTPUT,
-       O_STUDY };
+       O_TABLE, O_STUDY = O_TABLE + CLI_TABLE_NOPTIONS };
 
 typedef struct rheology_args {
     const cli_command *cmd;
     mimas_rheology_options o;
     mimas_rheology_window rate[MAX_WINDOWS], I[MAX_WINDOWS];
     const char *plot, *output;
+    cli_table_options table;
     cli_study study;
 } rheology_args;
 
@@ -80,30 +83,56 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_PLOT: a->plot = arg; return 0;
     case O_OUTPUT: a->output = arg; return 0;
     }
+    if (opt < O_STUDY)
+        return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     return cli_study_option(a->cmd, &a->study, opt - O_STUDY, arg);
 }
 
-#define HEADER "table\tparameter\tvalue\terror\tnpts\tlo\thi\tstatus\n"
+/* The header and rows of one analysis; with study, first the study column
+ * holding *study. */
+static void table_header(cli_table *t, const cli_study *study)
+{
+    if (study)
+        cli_study_column(t, study);
+    static const char *const cols[] = {"table", "parameter", "value", "error", "npts", "lo",
+                                       "hi", "status"};
+    for (int k = 0; k < 8; k++)
+        cli_table_column(t, cols[k], NULL);
+    cli_table_header_end(t);
+}
 
-/* The rows of one analysis, each after prefix (the study column). */
-static void write_rows(FILE *out, const mimas_rheology *r, const char *prefix)
+static void table_rows(cli_table *t, const mimas_rheology *r, const double *study)
 {
     for (size_t k = 0; k < r->nrows; k++) {
         const mimas_rheology_row *w = &r->rows[k];
-        fprintf(out, "%s%s\t%s", prefix, w->table, w->parameter);
-        cli_print_value(out, w->value);
-        cli_print_value(out, w->error);
-        fprintf(out, "\t%zu", w->npts);
-        cli_print_value(out, w->lo);
-        cli_print_value(out, w->hi);
-        fprintf(out, "\t%s\n", mimas_fit_status_name(w->status));
+        if (study)
+            cli_table_double(t, *study);
+        cli_table_text(t, w->table);
+        cli_table_text(t, w->parameter);
+        cli_table_double(t, w->value);
+        cli_table_double(t, w->error);
+        cli_table_int(t, (long long)w->npts);
+        cli_table_double(t, w->lo);
+        cli_table_double(t, w->hi);
+        cli_table_text(t, mimas_fit_status_name(w->status));
+        cli_table_row_end(t);
     }
 }
 
+typedef struct rheology_table {
+    const rheology_args *a;
+    const mimas_rheology *r;
+} rheology_table;
+
+/* The units of value, error, lo and hi depend on the row (docs/rheology.md): "-". */
 static void write_table(FILE *out, const void *ctx)
 {
-    fputs(HEADER, out);
-    write_rows(out, ctx, "");
+    const rheology_table *rt = ctx;
+    cli_table t;
+    cli_table_start(&t, out, &rt->a->table);
+    table_header(&t, NULL);
+    table_rows(&t, rt->r, NULL);
+    cli_table_end(&t);
 }
 
 static int run_one(const rheology_args *a, const char *input, mimas_error *err)
@@ -116,8 +145,9 @@ static int run_one(const rheology_args *a, const char *input, mimas_error *err)
     mimas_fieldset_close(fs);
     if (!status && a->plot)
         status = mimas_rheology_plot(r, a->plot, err);
+    rheology_table rt = {a, r};
     if (!status)
-        status = cli_write_table(a->output, write_table, r, err);
+        status = cli_write_table(a->output, write_table, &rt, err);
     mimas_rheology_free(r);
     return status;
 }
@@ -131,15 +161,12 @@ typedef struct study_result {
     size_t nrows;
 } study_result;
 
-static void write_runs(FILE *out, const void *ctx)
+static void write_runs(cli_table *t, const void *ctx)
 {
     const study_result *res = ctx;
-    fputs("study\t" HEADER, out);
-    for (size_t k = 0; k < res->study->nruns; k++) {
-        char prefix[40];
-        snprintf(prefix, sizeof prefix, "%.10g\t", res->study->x[k]);
-        write_rows(out, res->runs[k], prefix);
-    }
+    table_header(t, res->study);
+    for (size_t k = 0; k < res->study->nruns; k++)
+        table_rows(t, res->runs[k], &res->study->x[k]);
 }
 
 /* The trend of every row: the runs' values where they are ok. */
@@ -249,7 +276,8 @@ static int run_study(rheology_args *a, char **inputs, mimas_error *err)
     if (!status && a->plot)
         status = plot_study(a, &res, err);
     if (!status)
-        status = cli_study_write(st, a->output, write_runs, &res, res.trends, res.nrows, err);
+        status = cli_study_write(st, a->output, &a->table, write_runs, &res, res.trends,
+                                 res.nrows, err);
     for (size_t k = 0; res.runs && k < n; k++)
         mimas_rheology_free(res.runs[k]);
     free(res.runs);

@@ -9,9 +9,12 @@
 #include <string.h>
 
 #include "average.h"
+#include "cli_frames.h"
 #include "cli_study.h"
+#include "cli_table.h"
 #include "commands.h"
 #include "fieldset.h"
+#include "parallel.h"
 #include "reader.h"
 #include "shearband.h"
 
@@ -33,11 +36,12 @@ static const cli_option options[] = {
                               "particles)"},
     {"layer", 0, "Z", "study: the trends of Rc and W are those of the layer containing height Z "
                       "(default: the highest layer fitted, the surface layer)"},
+    CLI_TABLE_OPTIONS,
     CLI_STUDY_OPTIONS,
 };
 
 enum { O_OMEGA, O_MODEL, O_MIN, O_UNWEIGHTED, O_FENISTEIN, O_PLOT, O_OUTPUT, O_FROM, O_TO,
-       O_EXCLUDE, O_LAYER, O_STUDY };
+       O_EXCLUDE, O_LAYER, O_TABLE, O_STUDY = O_TABLE + CLI_TABLE_NOPTIONS };
 
 typedef struct band_args {
     const cli_command *cmd;
@@ -50,6 +54,7 @@ typedef struct band_args {
     size_t ntypes;
     double layer_z;
     int has_layer;
+    cli_table_options table;
     cli_study study;
 } band_args;
 
@@ -97,6 +102,8 @@ static int on_option(void *ctx, size_t opt, const char *arg)
         a->has_layer = 1;
         return 0;
     }
+    if (opt < O_STUDY)
+        return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     return cli_study_option(a->cmd, &a->study, opt - O_STUDY, arg);
 }
 
@@ -118,34 +125,44 @@ static int average_input(const band_args *a, const cli_inputs *in, mimas_reader 
     mimas_frame_init(&f);
     cli_progress prog;
     cli_progress_start(&prog, in);
-    while (!status && (status = mimas_reader_next(r, &f, err)) == MIMAS_OK) {
-        int take = cli_window_take(&w, &f, input, err);
-        if (take < 0)
-            status = MIMAS_EUSAGE;
-        if (take <= 0)
-            continue;
-        if (!avg) {
-            char spec[512];
-            status = mimas_band_choose_grid(&f, &o.grid, spec, sizeof spec, err);
-            if (!status)
-                status = mimas_average_create(&avg, &o, err);
-            if (!status)
-                fprintf(stderr, "mimas shearband: averaging the particles with --weight bins %s\n",
-                        spec);
-        }
-        if (!status)
-            status = mimas_average_add(avg, &f, err);
-        if (status && status != MIMAS_EIO)
-            mimas_error_prefix(err, "%s: step %lld", input, (long long)f.step);
-        if (avg)
-            cli_progress_frame(&prog, a->cmd, mimas_average_frames(avg), (long long)f.step,
-                               f.time);
-    }
-    cli_progress_done(&prog);
-    mimas_frame_free(&f);
-    if (status == MIMAS_END && !avg)
+    cli_frames frames;
+    cli_frames_init(&frames, r, &w, input);
+    /* the grid comes from the first frame of the selection (rank 0's first
+     * frame under MPI, shared with the others) */
+    if (!status)
+        status = cli_frames_next(&frames, &f, err);
+    char spec[512] = "";
+    if (mimas_par_rank() == 0 && status == MIMAS_OK)
+        status = mimas_band_choose_grid(&f, &o.grid, spec, sizeof spec, err);
+    if (mimas_par_rank() == 0 && status == MIMAS_END)
         status = mimas_error_set(err, MIMAS_EDATA, "%s: no frame in the selected time range",
                                  input);
+    int have = status == MIMAS_OK;
+    status = mimas_par_share(mimas_par_rank() == 0 ? status : MIMAS_OK, &o.grid, sizeof o.grid,
+                             err);
+    if (!status) {
+        status = mimas_average_create(&avg, &o, err);
+        if (!status && mimas_par_rank() == 0)
+            fprintf(stderr, "mimas shearband: averaging the particles with --weight bins %s\n",
+                    spec);
+        if (!status && !have)
+            status = MIMAS_END; /* this rank has no frame at all */
+    }
+    while (status == MIMAS_OK) {
+        status = mimas_average_add(avg, &f, err);
+        if (status && status != MIMAS_EIO)
+            mimas_error_prefix(err, "%s: step %lld", input, (long long)f.step);
+        cli_progress_frame(&prog, a->cmd, frames.position + 1, (long long)f.step, f.time);
+        if (!status)
+            status = cli_frames_next(&frames, &f, err);
+    }
+    status = mimas_par_agree(status, frames.position, err);
+    if (status == MIMAS_END)
+        status = mimas_average_reduce(avg, err);
+    if (status == MIMAS_OK)
+        status = MIMAS_END;
+    cli_progress_done(&prog);
+    mimas_frame_free(&f);
     if (status == MIMAS_END)
         status = mimas_fieldset_from_average(fs, avg, input, err);
     if (!status)
@@ -159,43 +176,59 @@ typedef struct band_table {
     const mimas_band *b;
 } band_table;
 
-static void write_header(FILE *out, const band_args *a, int model, const char *prefix)
+/* The header of one run's table; with study, first the study column. */
+static void write_header(cli_table *t, const band_args *a, int model, const cli_study *study)
 {
-    fprintf(out, "%sz\tRc\tRc_err\tW\tW_err\tchi2\tnpts", prefix);
-    if (model == 4)
-        fputs("\tA\tA_err\tB\tB_err", out);
+    if (study)
+        cli_study_column(t, study);
+    static const char *const cols[] = {"z", "Rc", "Rc_err", "W", "W_err"};
+    for (int k = 0; k < 5; k++)
+        cli_table_column(t, cols[k], "m");
+    cli_table_column(t, "chi2", "1");
+    cli_table_column(t, "npts", NULL);
+    static const char *const ab[] = {"A", "A_err", "B", "B_err"};
+    for (int k = 0; model == 4 && k < 4; k++)
+        cli_table_column(t, ab[k], "1");
     if (a->fenistein)
-        fputs("\tRc_fenistein", out);
-    fputs("\tstatus\n", out);
+        cli_table_column(t, "Rc_fenistein", "m");
+    cli_table_column(t, "status", NULL);
+    cli_table_header_end(t);
 }
 
-/* The rows of one run's layers, each after prefix (the study column). */
-static void write_rows(FILE *out, const band_args *a, const mimas_band *b, const char *prefix)
+/* The rows of one run's layers; with study, first the study column holding *study. */
+static void write_rows(cli_table *t, const band_args *a, const mimas_band *b,
+                       const double *study)
 {
     for (size_t k = 0; k < b->nlayers; k++) {
         const mimas_fit *f = &b->layers[k].fit;
-        fprintf(out, "%s%.10g", prefix, b->layers[k].z);
+        if (study)
+            cli_table_double(t, *study);
+        cli_table_double(t, b->layers[k].z);
         for (int q = MIMAS_BAND_RC; q <= MIMAS_BAND_W; q++) {
-            cli_print_value(out, f->p[q]);
-            cli_print_value(out, f->err[q]);
+            cli_table_double(t, f->p[q]);
+            cli_table_double(t, f->err[q]);
         }
-        cli_print_value(out, f->chi2);
-        fprintf(out, "\t%zu", f->npts);
+        cli_table_double(t, f->chi2);
+        cli_table_int(t, (long long)f->npts);
         for (int q = MIMAS_BAND_A; b->model == 4 && q <= MIMAS_BAND_B; q++) {
-            cli_print_value(out, f->p[q]);
-            cli_print_value(out, f->err[q]);
+            cli_table_double(t, f->p[q]);
+            cli_table_double(t, f->err[q]);
         }
         if (a->fenistein)
-            cli_print_value(out, mimas_band_fenistein_rc(a->rs, a->h));
-        fprintf(out, "\t%s\n", mimas_fit_status_name(f->status));
+            cli_table_double(t, mimas_band_fenistein_rc(a->rs, a->h));
+        cli_table_text(t, mimas_fit_status_name(f->status));
+        cli_table_row_end(t);
     }
 }
 
 static void write_table(FILE *out, const void *ctx)
 {
-    const band_table *t = ctx;
-    write_header(out, t->a, t->b->model, "");
-    write_rows(out, t->a, t->b, "");
+    const band_table *bt = ctx;
+    cli_table t;
+    cli_table_start(&t, out, &bt->a->table);
+    write_header(&t, bt->a, bt->b->model, NULL);
+    write_rows(&t, bt->a, bt->b, NULL);
+    cli_table_end(&t);
 }
 
 /* The field set of one input: a field file, or raw particle input averaged. */
@@ -225,15 +258,12 @@ typedef struct band_study {
     cli_trend_row trends[2];
 } band_study;
 
-static void write_runs(FILE *out, const void *ctx)
+static void write_runs(cli_table *t, const void *ctx)
 {
     const band_study *st = ctx;
-    write_header(out, st->a, st->a->o.model, "study\t");
-    for (size_t k = 0; k < st->a->study.nruns; k++) {
-        char prefix[40];
-        snprintf(prefix, sizeof prefix, "%.10g\t", st->a->study.x[k]);
-        write_rows(out, st->a, st->runs[k], prefix);
-    }
+    write_header(t, st->a, st->a->o.model, &st->a->study);
+    for (size_t k = 0; k < st->a->study.nruns; k++)
+        write_rows(t, st->a, st->runs[k], &st->a->study.x[k]);
 }
 
 /* The layer of b the trends take: the one containing z (nearest centre), or
@@ -287,6 +317,7 @@ static int run_study(band_args *a, cli_inputs *in, char **inputs, mimas_error *e
 {
     cli_study *s = &a->study;
     size_t n = s->nruns;
+    int root = mimas_par_rank() == 0; /* under MPI rank 0 fits and writes */
     band_study st = {a, calloc(n, sizeof *st.runs), calloc(n, sizeof *st.layer), {{0}}};
     double *y = malloc(4 * n * sizeof *y);
     int status = st.runs && st.layer && y ? MIMAS_OK
@@ -296,17 +327,17 @@ static int run_study(band_args *a, cli_inputs *in, char **inputs, mimas_error *e
         status = input_fields(a, in, &inputs[k], 1, &fs, err);
         if (!status)
             status = cli_study_take(s, k, mimas_fieldset_parameters(fs), inputs[k], err);
-        if (!status)
+        if (!status && root)
             status = mimas_band_analyse(fs, &a->o, &st.runs[k], err);
-        if (!status)
+        if (!status && root)
             st.layer[k] = choose_layer(a, st.runs[k]);
         mimas_fieldset_close(fs);
     }
-    if (!status) {
+    if (!status && root) {
         cli_study_note(a->cmd, s);
         status = band_trends(&st, y, y + 2 * n, err);
     }
-    if (!status && a->plot) {
+    if (!status && root && a->plot) {
         mimas_study_series se[2];
         mimas_study_panel pn[2];
         static const char *const what[2] = {"band centre Rc", "band width W"};
@@ -320,8 +351,8 @@ static int run_study(band_args *a, cli_inputs *in, char **inputs, mimas_error *e
         }
         status = mimas_study_plot(a->plot, cli_study_label(s), s->x, n, pn, 2, 2, err);
     }
-    if (!status)
-        status = cli_study_write(s, a->output, write_runs, &st, st.trends, 2, err);
+    if (!status && root)
+        status = cli_study_write(s, a->output, &a->table, write_runs, &st, st.trends, 2, err);
     for (size_t k = 0; st.runs && k < n; k++)
         mimas_band_free(st.runs[k]);
     free(st.runs);
@@ -334,14 +365,15 @@ static int run_one(band_args *a, cli_inputs *in, char **inputs, int n, mimas_err
 {
     mimas_fieldset *fs = NULL;
     mimas_band *b = NULL;
+    int root = mimas_par_rank() == 0;
     int status = input_fields(a, in, inputs, n, &fs, err);
-    if (!status)
+    if (!status && root)
         status = mimas_band_analyse(fs, &a->o, &b, err);
     mimas_fieldset_close(fs);
-    if (!status && a->plot)
+    if (!status && root && a->plot)
         status = mimas_band_plot(b, a->plot, err);
     band_table t = {a, b};
-    if (!status)
+    if (!status && root)
         status = cli_write_table(a->output, write_table, &t, err);
     mimas_band_free(b);
     return status;
@@ -378,6 +410,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
     cli_study_free(&a.study);
     if (rc)
         return rc < 0 ? 0 : rc;
+    /* under MPI the fits and the output are rank 0's (its average holds every
+     * rank's frames); the others end with its status */
+    status = mimas_par_share(status, NULL, 0, &err);
     if (status)
         return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
     return 0;

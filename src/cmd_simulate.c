@@ -1,6 +1,6 @@
 /* mimas simulate: runs a DEM scenario (ring shear cell, periodic box,
- * liquid-bridge pull-off) and writes particles, contacts and wall contacts
- * in the native format. */
+ * liquid-bridge pull-off, plug conveying in a tube) and writes particles,
+ * contacts and wall contacts (and a tube's gas fields) in the native format. */
 #include <config.h>
 
 #include <math.h>
@@ -22,7 +22,7 @@ static const cli_option options[] = {
     {"resume", 0, NULL, "continue from the checkpoint RUN.h5.ckpt"},
     {"stop-at", 0, "STEP", "stop after this step, leaving a checkpoint for --resume"},
     {"print-defaults", 0, "TYPE", "print a complete scenario file of TYPE (ringshear, box, "
-                                  "pulloff) with every default, and exit"},
+                                  "pulloff, plugtube) with every default, and exit"},
     {"quiet", 'q', NULL, "no progress line"},
     {"list-keys", 0, NULL, "print every scenario key with its unit and meaning (Markdown) and exit"},
 };
@@ -79,8 +79,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (a.defaults) {
         int type = sim_scenario_type(a.defaults);
         if (type < 0)
-            return cli_fail(cmd, 1, "--print-defaults needs ringshear, box or pulloff, not '%s'",
-                            a.defaults);
+            return cli_fail(cmd, 1, "--print-defaults needs ringshear, box, pulloff or plugtube, "
+                                    "not '%s'", a.defaults);
         sim_scenario s;
         sim_scenario_defaults(&s, type);
         sim_scenario_print(&s, stdout);
@@ -112,13 +112,16 @@ static int run(const cli_command *cmd, int argc, char **argv)
 
 const cli_command cmd_simulate = {
     "simulate",
-    "run a DEM scenario: split-bottom ring shear cell, periodic box, liquid-bridge pull-off",
+    "run a DEM scenario: split-bottom ring shear cell, periodic box, liquid-bridge pull-off, "
+    "plug conveying",
     "SCENARIO.ini -o RUN.h5 [--threads N] [--resume]",
     "Runs the discrete element simulation the scenario file describes (INI; every\n"
     "key and its default: --print-defaults TYPE; docs/simulate.md) and writes a\n"
     "frame every output_every steps with all particles, all particle-particle\n"
     "contacts and all wall contacts (contact point, force and its normal and\n"
-    "tangential parts, overlap, liquid-bridge volume) in the native format.\n"
+    "tangential parts, overlap, liquid-bridge volume) in the native format; a\n"
+    "plugtube run also writes the tube and its gas fields (pressure, porosity,\n"
+    "superficial gas velocity) and feeds and removes grains (docs/plugconveying.md).\n"
     "Each frame is flushed when written, so a killed run leaves a file readable up\n"
     "to its last complete frame.  A checkpoint (RUN.h5.ckpt) is written with every\n"
     "frame; --resume continues from it, bit for bit as if the run had not stopped.\n"

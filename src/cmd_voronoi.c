@@ -4,12 +4,16 @@
 #include <config.h>
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_table.h"
+#include "cli_frames.h"
 #include "commands.h"
 #include "native.h"
+#include "parallel.h"
 #include "reader.h"
 #include "voro_walls.h"
 #include "voronoi.h"
@@ -29,9 +33,14 @@ static const cli_option options[] = {
     {"tsv", 0, "FILE", "write the table to FILE, or - for standard output (the default "
                        "without -o)"},
     {"threads", 0, "N", "OpenMP threads (default: OMP_NUM_THREADS or all cores)"},
+    {"from", 0, "T0", "first time to use (s)"},
+    {"to", 0, "T1", "last time to use (s)"},
+    {"every", 0, "K", "use every K-th frame of those selected"},
+    CLI_TABLE_OPTIONS,
 };
 
-enum { O_RADICAL, O_WALLS, O_EXTENT, O_VWIDTH, O_EXCLUDE, O_OUTPUT, O_TSV, O_THREADS };
+enum { O_RADICAL, O_WALLS, O_EXTENT, O_VWIDTH, O_EXCLUDE, O_OUTPUT, O_TSV, O_THREADS, O_FROM,
+       O_TO, O_EVERY, O_TABLE };
 
 #define MAX_WALLS 16
 
@@ -41,6 +50,8 @@ typedef struct voronoi_args {
     mimas_voro_wall walls[MAX_WALLS];
     int32_t types[64];
     const char *tsv, *output;
+    cli_table_options table;
+    cli_window window;
 } voronoi_args;
 
 static int parse_types(voronoi_args *a, const char *arg)
@@ -72,21 +83,34 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_OUTPUT: a->output = arg; return 0;
     case O_TSV: a->tsv = arg; return 0;
     case O_THREADS: return cli_parse_threads(a->cmd, arg, &a->o.threads);
+    case O_FROM:
+    case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
+    case O_EVERY: return cli_window_every(a->cmd, &a->window, arg);
+    default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
-    return 1;
 }
 
-static void print_value(FILE *out, double v)
+static void write_header(cli_table *t)
 {
-    if (isnan(v))
-        fputs("\tnan", out);
-    else
-        fprintf(out, "\t%.17g", v);
+    static const struct {
+        const char *name, *unit;
+    } cols[] = {{"step", NULL}, {"id", NULL}, {"x", "m"}, {"y", "m"}, {"z", "m"},
+                {"volume", "m3"}, {"nu", "1"}, {"faces", NULL}, {"surface", NULL}};
+    for (size_t k = 0; k < sizeof cols / sizeof cols[0]; k++)
+        cli_table_column(t, cols[k].name, cols[k].unit);
+    static const char *const ab = "xyz";
+    for (int m = 0; m < 9; m++) {
+        char name[16];
+        snprintf(name, sizeof name, "stress_%c%c", ab[m / 3], ab[m % 3]);
+        cli_table_column(t, name, "Pa");
+    }
+    cli_table_header_end(t);
 }
 
 /* Rows "step id x y z volume nu faces surface stress_xx .. stress_zz" of the
  * reported particles. */
-static int write_rows(const mimas_voronoi *v, const mimas_frame *f, FILE *out, mimas_error *err)
+static int write_rows(const mimas_voronoi *v, const mimas_frame *f, cli_table *t,
+                      mimas_error *err)
 {
     const mimas_particles *p = &f->particles;
     mimas_voronoi_values val;
@@ -94,17 +118,97 @@ static int write_rows(const mimas_voronoi *v, const mimas_frame *f, FILE *out, m
     for (size_t k = 0; k < p->n; k++) {
         if (!mimas_voronoi_reported(v, p, k))
             continue;
-        fprintf(out, "%lld\t%lld", (long long)f->step, (long long)p->id[k]);
+        cli_table_int(t, (long long)f->step);
+        cli_table_int(t, (long long)p->id[k]);
         for (int d = 0; d < 3; d++)
-            print_value(out, p->pos[k][d]);
-        print_value(out, val.volume[k]);
-        print_value(out, val.nu[k]);
-        fprintf(out, "\t%d\t%d", (int)val.faces[k], (int)val.surface[k]);
+            cli_table_double(t, p->pos[k][d]);
+        cli_table_double(t, val.volume[k]);
+        cli_table_double(t, val.nu[k]);
+        cli_table_int(t, (long long)val.faces[k]);
+        cli_table_int(t, (long long)val.surface[k]);
         for (int m = 0; m < 9; m++)
-            print_value(out, val.stress ? val.stress[9 * k + (size_t)m] : NAN);
-        fputc('\n', out);
+            cli_table_double(t, val.stress ? val.stress[9 * k + (size_t)m] : NAN);
+        cli_table_row_end(t);
     }
-    return ferror(out) ? mimas_error_set(err, MIMAS_EIO, "cannot write the table") : MIMAS_OK;
+    return ferror(t->fp) ? mimas_error_set(err, MIMAS_EIO, "cannot write the table") : MIMAS_OK;
+}
+
+/* ---- one frame's result, written on rank 0 in frame order ---- */
+typedef struct voronoi_sink {
+    FILE *out;          /* the table, or NULL */
+    mimas_writer *w;    /* -o, or NULL */
+    mimas_frame frame;  /* a frame unpacked from a result */
+} voronoi_sink;
+
+/* What a frame's result holds: its table rows (formatted as the table's
+ * options say), its frame with the Voronoi columns. */
+typedef struct result_parts {
+    int rows, frame;
+    const cli_table_options *table;
+} result_parts;
+
+/* A frame's result: the length of its table rows, the rows, then the packed
+ * frame (each part empty when not wanted). */
+static int pack_result(const mimas_voronoi *v, const mimas_frame *f, const result_parts *parts,
+                       mimas_bytes *out, mimas_error *err)
+{
+    char *text = NULL;
+    size_t len = 0;
+    if (parts->rows) {
+        FILE *m = open_memstream(&text, &len);
+        if (!m)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        cli_table t;
+        cli_table_start(&t, m, parts->table);
+        int rc = write_rows(v, f, &t, err);
+        int bad = cli_table_end(&t);
+        if (fclose(m) || rc || bad) {
+            free(text);
+            return rc ? rc : mimas_error_set(err, MIMAS_EIO, "out of memory");
+        }
+    }
+    mimas_bytes packed = {0};
+    int rc = parts->frame ? mimas_frame_pack(f, &packed, err) : MIMAS_OK;
+    uint64_t n = len;
+    size_t total = sizeof n + len + packed.n;
+    if (!rc && total > out->cap) {
+        unsigned char *p = realloc(out->data, total);
+        if (!p)
+            rc = mimas_error_set(err, MIMAS_EIO, "out of memory");
+        else
+            out->data = p, out->cap = total;
+    }
+    if (!rc) {
+        memcpy(out->data, &n, sizeof n);
+        if (len)
+            memcpy(out->data + sizeof n, text, len);
+        if (packed.n)
+            memcpy(out->data + sizeof n + len, packed.data, packed.n);
+        out->n = total;
+    }
+    free(text);
+    mimas_bytes_free(&packed);
+    return rc;
+}
+
+static int write_frame(void *ctx, size_t position, const unsigned char *data, size_t n,
+                       mimas_error *err)
+{
+    (void)position;
+    voronoi_sink *s = ctx;
+    uint64_t len;
+    if (n < sizeof len)
+        return mimas_error_set(err, MIMAS_EDATA, "a per-frame result is truncated");
+    memcpy(&len, data, sizeof len);
+    if (len > n - sizeof len)
+        return mimas_error_set(err, MIMAS_EDATA, "a per-frame result is truncated");
+    if (s->out && len && fwrite(data + sizeof len, 1, len, s->out) != len)
+        return mimas_error_set(err, MIMAS_EIO, "cannot write the table");
+    if (!s->w)
+        return MIMAS_OK;
+    size_t at = sizeof len + (size_t)len;
+    int rc = mimas_frame_unpack(&s->frame, data + at, n - at, err);
+    return rc ? rc : mimas_writer_append(s->w, &s->frame, err);
 }
 
 static int run(const cli_command *cmd, int argc, char **argv)
@@ -129,63 +233,82 @@ static int run(const cli_command *cmd, int argc, char **argv)
         cli_inputs_free(&in);
         return rc < 0 ? 0 : rc;
     }
-    /* outputs: the table unless only -o was asked for; the native file */
+    /* outputs, on rank 0 only (under MPI every rank tessellates its frames and
+     * sends rank 0 the rows and the frame, written there in frame order): the
+     * table unless only -o was asked for; the native file */
+    int root = mimas_par_rank() == 0;
     cli_output table = {0};
     int status = MIMAS_OK;
-    if (a.tsv || !a.output)
+    if (root && (a.tsv || !a.output))
         status = cli_output_open(&table, a.tsv, &err);
     FILE *out = table.fp;
+    cli_table tw;
+    cli_table_start(&tw, out, &a.table);
     if (out)
-        fputs("step\tid\tx\ty\tz\tvolume\tnu\tfaces\tsurface\tstress_xx\tstress_xy\tstress_xz\t"
-              "stress_yx\tstress_yy\tstress_yz\tstress_zx\tstress_zy\tstress_zz\n", out);
-    mimas_writer *w = NULL;
+        write_header(&tw);
+    voronoi_sink sink = {out, NULL, {0}};
+    mimas_frame_init(&sink.frame);
     char *provenance = cli_command_line(argc, argv);
-    if (!status && a.output) {
+    if (!status && root && a.output) {
         mimas_writer_options wo;
         mimas_writer_options_default(&wo);
         wo.atomic = 1; /* no partial output */
+        wo.xdmf = 1;
         wo.provenance = provenance;
-        status = mimas_writer_open(&w, a.output, &wo, &err);
+        status = mimas_writer_open(&sink.w, a.output, &wo, &err);
     }
+    mimas_par_ordered *order = NULL;
+    if (!status)
+        status = mimas_par_ordered_open(&order, write_frame, &sink, &err);
+    status = mimas_par_agree(status, SIZE_MAX, &err);
+    result_parts parts = {a.tsv || !a.output, a.output != NULL, &a.table};
     mimas_frame f;
     mimas_frame_init(&f);
+    mimas_bytes result = {0};
     cli_progress prog;
     cli_progress_start(&prog, &in);
-    size_t frames = 0;
-    while (!status && (status = mimas_reader_next(r, &f, &err)) == MIMAS_OK) {
+    cli_frames frames;
+    cli_frames_init(&frames, r, &a.window, argv[first]);
+    while (!status && (status = cli_frames_next(&frames, &f, &err)) == MIMAS_OK) {
         status = mimas_voronoi_frame(vor, &f, &err);
         if (status && status != MIMAS_EIO)
             mimas_error_prefix(&err, "%s: step %lld", argv[first], (long long)f.step);
-        if (!status && out)
-            status = write_rows(vor, &f, out, &err);
-        if (!status && w)
-            status = mimas_writer_append(w, &f, &err);
-        cli_progress_frame(&prog, cmd, ++frames, (long long)f.step, f.time);
+        if (!status)
+            status = pack_result(vor, &f, &parts, &result, &err);
+        if (!status)
+            status = mimas_par_ordered_put(order, frames.position, &result, &err);
+        cli_progress_frame(&prog, cmd, frames.position + 1, (long long)f.step, f.time);
     }
     cli_progress_done(&prog);
+    status = mimas_par_ordered_finish(order, status, frames.position, &err);
+    mimas_par_ordered_free(order);
     size_t skipped = mimas_reader_skipped(r);
+    mimas_bytes_free(&result);
     mimas_frame_free(&f);
+    mimas_frame_free(&sink.frame);
     mimas_reader_close(r);
     cli_inputs_free(&in);
     mimas_voronoi_free(vor);
-    if (status == MIMAS_END && frames == 0)
+    if (status == MIMAS_END && frames.selected == 0)
         status = mimas_error_set(&err, MIMAS_EDATA, "%s: no frames", argv[first]);
-    if (w) {
+    if (sink.w) {
         if (status == MIMAS_END) {
-            int closed = mimas_writer_close(w, &err);
+            int closed = mimas_writer_close(sink.w, &err);
             if (closed)
                 status = closed;
         } else {
-            mimas_writer_abort(w);
+            mimas_writer_abort(sink.w);
         }
     }
     free(provenance);
+    cli_table_end(&tw);
     int closed = cli_output_close(&table, status == MIMAS_END, &err);
     if (closed)
         status = closed;
+    status = mimas_par_agree(status, SIZE_MAX, &err);
     if (status != MIMAS_END)
         return cli_fail(cmd, mimas_exit_status(status), "%s", err.msg);
-    if (skipped)
+    if (skipped && root)
         fprintf(stderr, "mimas voronoi: skipped %zu frames whose contact data were missing\n",
                 skipped);
     return 0;

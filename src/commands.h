@@ -6,11 +6,13 @@
 
 extern const cli_command cmd_average;
 extern const cli_command cmd_convert;
+extern const cli_command cmd_disperse;
 extern const cli_command cmd_info;
 extern const cli_command cmd_rheology;
 extern const cli_command cmd_shearband;
 extern const cli_command cmd_simulate;
 extern const cli_command cmd_voronoi;
 extern const cli_command cmd_energy;
+extern const cli_command cmd_xdmf;
 
 #endif

@@ -370,21 +370,30 @@ void mimas_box_edges(const mimas_box *b, double e[3][3])
     memcpy(e, m, sizeof m);
 }
 
-void mimas_box_min_image(const mimas_box *b, double d[3])
+void mimas_box_min_image_shift(const mimas_box *b, double d[3], double k[3])
 {
     double L[3] = {b->hi[0] - b->lo[0], b->hi[1] - b->lo[1], b->hi[2] - b->lo[2]};
+    k[0] = k[1] = k[2] = 0;
     /* z, then y, then x: the tilt couples each axis to the ones below it */
     if (b->periodic[2]) {
-        double k = nearbyint(d[2] / L[2]);
-        d[2] -= k * L[2];
-        d[1] -= k * b->yz;
-        d[0] -= k * b->xz;
+        k[2] = nearbyint(d[2] / L[2]);
+        d[2] -= k[2] * L[2];
+        d[1] -= k[2] * b->yz;
+        d[0] -= k[2] * b->xz;
     }
     if (b->periodic[1]) {
-        double k = nearbyint(d[1] / L[1]);
-        d[1] -= k * L[1];
-        d[0] -= k * b->xy;
+        k[1] = nearbyint(d[1] / L[1]);
+        d[1] -= k[1] * L[1];
+        d[0] -= k[1] * b->xy;
     }
-    if (b->periodic[0])
-        d[0] -= nearbyint(d[0] / L[0]) * L[0];
+    if (b->periodic[0]) {
+        k[0] = nearbyint(d[0] / L[0]);
+        d[0] -= k[0] * L[0];
+    }
+}
+
+void mimas_box_min_image(const mimas_box *b, double d[3])
+{
+    double k[3];
+    mimas_box_min_image_shift(b, d, k);
 }

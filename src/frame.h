@@ -140,6 +140,10 @@ void mimas_box_edges(const mimas_box *b, double e[3][3]);
  * for orthogonal and triclinic boxes (LAMMPS' convention: the nearest image
  * in fractional coordinates). */
 void mimas_box_min_image(const mimas_box *b, double d[3]);
+/* The same, and k[e] the whole edge vectors e (a, b, c) taken off d: the
+ * original d is the result plus k[0] a + k[1] b + k[2] c (k is 0 along
+ * directions that are not periodic). */
+void mimas_box_min_image_shift(const mimas_box *b, double d[3], double k[3]);
 
 /* ---- tube geometry (tube-flow runs: plug conveying) ---- */
 /* The tube a run flows through, as the native file records it (attributes of

@@ -3,6 +3,10 @@
 #include "h5util.h"
 
 #include <stdio.h>
+#include <stdlib.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <string.h>
 
 void h5_quiet_begin(h5_quiet *q)
@@ -64,37 +68,52 @@ int h5_attr_write_str(hid_t obj, const char *name, const char *value)
     return rc;
 }
 
-int h5_attr_write_strs(hid_t obj, const char *name, const char *const *values, size_t n)
+int h5_attr_write_vlstr(hid_t obj, const char *name, const char *value)
 {
-    size_t w = 1;
-    for (size_t k = 0; k < n; k++)
-        if (strlen(values[k]) + 1 > w)
-            w = strlen(values[k]) + 1;
-    char buf[16 * 64];
-    if (n * w > sizeof buf)
-        return -1;
-    memset(buf, 0, sizeof buf);
-    for (size_t k = 0; k < n; k++)
-        memcpy(buf + k * w, values[k], strlen(values[k]));
     hid_t t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, w);
-    H5Tset_strpad(t, H5T_STR_NULLTERM);
-    hsize_t dim = n;
-    hid_t s = H5Screate_simple(1, &dim, NULL);
-    int rc = write_attr(obj, name, t, s, buf);
+    H5Tset_size(t, H5T_VARIABLE);
+    H5Tset_cset(t, H5T_CSET_UTF8);
+    hid_t s = H5Screate(H5S_SCALAR);
+    int rc = write_attr(obj, name, t, s, &value);
     H5Sclose(s);
     H5Tclose(t);
     return rc;
 }
 
-int h5_attr_write_ints(hid_t obj, const char *name, const int *values, size_t n)
+/* n strings packed into slots of the longest length + 1 (malloc'd), with
+ * their HDF5 type and the 1-d space of n; NULL when out of memory. */
+static char *pack_strs(const char *const *values, size_t n, hid_t *type, hid_t *space)
 {
+    size_t w = 1;
+    for (size_t k = 0; k < n; k++)
+        if (strlen(values[k]) + 1 > w)
+            w = strlen(values[k]) + 1;
+    char *buf = calloc(n ? n : 1, w);
+    if (!buf)
+        return NULL;
+    for (size_t k = 0; k < n; k++)
+        memcpy(buf + k * w, values[k], strlen(values[k]));
+    *type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(*type, w);
+    H5Tset_strpad(*type, H5T_STR_NULLTERM);
     hsize_t dim = n;
-    hid_t s = n == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &dim, NULL);
-    int rc = write_attr(obj, name, H5T_NATIVE_INT, s, values);
+    *space = H5Screate_simple(1, &dim, NULL);
+    return buf;
+}
+
+int h5_attr_write_strs(hid_t obj, const char *name, const char *const *values, size_t n)
+{
+    hid_t t, s;
+    char *buf = pack_strs(values, n, &t, &s);
+    if (!buf)
+        return -1;
+    int rc = write_attr(obj, name, t, s, buf);
     H5Sclose(s);
+    H5Tclose(t);
+    free(buf);
     return rc;
 }
+
 
 int h5_attr_write_double(hid_t obj, const char *name, double value)
 {
@@ -110,7 +129,27 @@ static hid_t open_attr(hid_t obj, const char *name)
     return H5Aexists(obj, name) > 0 ? H5Aopen(obj, name, H5P_DEFAULT) : H5I_INVALID_HID;
 }
 
-int h5_attr_read_ints(hid_t obj, const char *name, int *values, size_t n)
+/* a 1-d (or scalar for n = 1) attribute of n values of memory type t */
+static int write_array_attr(hid_t obj, const char *name, hid_t t, const void *values, size_t n)
+{
+    hsize_t dim = n;
+    hid_t s = n == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &dim, NULL);
+    int rc = write_attr(obj, name, t, s, values);
+    H5Sclose(s);
+    return rc;
+}
+
+int h5_attr_write_doubles(hid_t obj, const char *name, const double *values, size_t n)
+{
+    return write_array_attr(obj, name, H5T_NATIVE_DOUBLE, values, n);
+}
+
+int h5_attr_write_int64s(hid_t obj, const char *name, const int64_t *values, size_t n)
+{
+    return write_array_attr(obj, name, H5T_NATIVE_INT64, values, n);
+}
+
+static int read_array_attr(hid_t obj, const char *name, hid_t t, void *values, size_t n)
 {
     hid_t a = open_attr(obj, name);
     if (a < 0)
@@ -119,10 +158,30 @@ int h5_attr_read_ints(hid_t obj, const char *name, int *values, size_t n)
     hssize_t count = H5Sget_simple_extent_npoints(s);
     H5Sclose(s);
     int rc = -1;
-    if (count >= 1 && (size_t)count <= n && H5Aread(a, H5T_NATIVE_INT, values) >= 0)
+    if (count >= 1 && (size_t)count <= n && H5Aread(a, t, values) >= 0)
         rc = (int)count;
     H5Aclose(a);
     return rc;
+}
+
+int h5_attr_read_doubles(hid_t obj, const char *name, double *values, size_t n)
+{
+    return read_array_attr(obj, name, H5T_NATIVE_DOUBLE, values, n);
+}
+
+int h5_attr_read_int64s(hid_t obj, const char *name, int64_t *values, size_t n)
+{
+    return read_array_attr(obj, name, H5T_NATIVE_INT64, values, n);
+}
+
+int h5_attr_write_ints(hid_t obj, const char *name, const int *values, size_t n)
+{
+    return write_array_attr(obj, name, H5T_NATIVE_INT, values, n);
+}
+
+int h5_attr_read_ints(hid_t obj, const char *name, int *values, size_t n)
+{
+    return read_array_attr(obj, name, H5T_NATIVE_INT, values, n);
 }
 
 int h5_attr_read_str(hid_t obj, const char *name, char *buf, size_t len)
@@ -137,6 +196,7 @@ int h5_attr_read_str(hid_t obj, const char *name, char *buf, size_t len)
             char *v = NULL;
             hid_t mt = H5Tcopy(H5T_C_S1);
             H5Tset_size(mt, H5T_VARIABLE);
+            H5Tset_cset(mt, H5Tget_cset(ft)); /* HDF5 does not convert ASCII <-> UTF-8 */
             if (H5Aread(a, mt, &v) >= 0 && v) {
                 snprintf(buf, len, "%s", v);
                 H5free_memory(v);
@@ -150,6 +210,7 @@ int h5_attr_read_str(hid_t obj, const char *name, char *buf, size_t len)
                 hid_t mt = H5Tcopy(H5T_C_S1);
                 H5Tset_size(mt, sz + 1);
                 H5Tset_strpad(mt, H5T_STR_NULLTERM);
+                H5Tset_cset(mt, H5Tget_cset(ft));
                 if (H5Aread(a, mt, tmp) >= 0) {
                     tmp[sz] = '\0';
                     snprintf(buf, len, "%s", tmp);
@@ -207,11 +268,48 @@ int h5_write_doubles(hid_t loc, const char *name, int rank, const hsize_t *dims,
     return rc;
 }
 
+void h5_release_free_lists(void)
+{
+    H5garbage_collect();
+#ifdef __GLIBC__
+    /* and the heap's free pages back to the system */
+    malloc_trim(0);
+#endif
+}
+
+void h5_limit_free_lists(size_t bytes)
+{
+    int all = bytes / 3 > 0x7fffffff ? 0x7fffffff : (int)(bytes / 3), one = all / 4;
+    /* regular, array and block lists: a third each, a quarter of that per list */
+    H5set_free_list_limits(all, one, all, one, all, one);
+}
+
+int h5_write_strs(hid_t loc, const char *name, const char *const *values, size_t n,
+                  const char *meaning)
+{
+    hid_t t, s;
+    char *buf = pack_strs(values, n, &t, &s);
+    if (!buf)
+        return -1;
+    hid_t ds = H5Dcreate2(loc, name, t, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    int rc = ds < 0 || H5Dwrite(ds, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0;
+    if (!rc && meaning)
+        rc |= h5_attr_write_str(ds, "definition", meaning);
+    if (ds >= 0)
+        H5Dclose(ds);
+    H5Sclose(s);
+    H5Tclose(t);
+    free(buf);
+    return rc;
+}
+
 hid_t h5_create_growing(hid_t loc, const char *name, hid_t type, int rank, int n_unlimited,
                         const hsize_t *dims, const hsize_t *chunk, const void *fill,
                         int deflate)
 {
-    hsize_t cur[4], max[4];
+    hsize_t cur[8], max[8];
+    if (rank < 1 || rank > 8)
+        return H5I_INVALID_HID;
     for (int d = 0; d < rank; d++) {
         cur[d] = d < n_unlimited ? 0 : dims[d];
         max[d] = d < n_unlimited ? H5S_UNLIMITED : dims[d];

@@ -6,6 +6,7 @@
 
 #include <hdf5.h>
 #include <stddef.h>
+#include <stdint.h>
 
 /* While "quiet", HDF5 prints nothing; mimas reports errors itself. */
 typedef struct h5_quiet {
@@ -20,9 +21,18 @@ void h5_quiet_end(const h5_quiet *q);
 void h5_error_text(char *buf, size_t len);
 
 int h5_attr_write_str(hid_t obj, const char *name, const char *value);
+/* A scalar variable-length string attribute (what H5MD 1.1 asks of its
+ * string attributes, e.g. unit). */
+int h5_attr_write_vlstr(hid_t obj, const char *name, const char *value);
 int h5_attr_write_strs(hid_t obj, const char *name, const char *const *values, size_t n);
 int h5_attr_write_ints(hid_t obj, const char *name, const int *values, size_t n);
 int h5_attr_write_double(hid_t obj, const char *name, double value);
+/* 1-d attributes of n values (a scalar for n = 1) and their reading (up to
+ * n values; the number stored, or -1). */
+int h5_attr_write_doubles(hid_t obj, const char *name, const double *values, size_t n);
+int h5_attr_write_int64s(hid_t obj, const char *name, const int64_t *values, size_t n);
+int h5_attr_read_doubles(hid_t obj, const char *name, double *values, size_t n);
+int h5_attr_read_int64s(hid_t obj, const char *name, int64_t *values, size_t n);
 /* Reads up to n ints; returns the number stored in the attribute, or -1. */
 int h5_attr_read_ints(hid_t obj, const char *name, int *values, size_t n);
 /* Reads a scalar string attribute (fixed or variable length); -1 if absent. */
@@ -34,6 +44,18 @@ int h5_attr_read_strs(hid_t obj, const char *name, char (*values)[16], size_t n)
  * string attributes unit (unless NULL or "1") and definition (unless NULL). */
 int h5_write_doubles(hid_t loc, const char *name, int rank, const hsize_t *dims,
                      const double *data, const char *unit, const char *meaning);
+
+/* HDF5 keeps freed blocks in free lists of its own, without bound by
+ * default (tens of MB after reading many chunks).  Gives them back to the
+ * heap, and (glibc) the heap's free pages to the system: */
+void h5_release_free_lists(void);
+/* Bounds them for the process to about bytes in all. */
+void h5_limit_free_lists(size_t bytes);
+
+/* Writes a 1-d dataset of n fixed-length strings with the attribute
+ * definition (unless NULL). */
+int h5_write_strs(hid_t loc, const char *name, const char *const *values, size_t n,
+                  const char *meaning);
 
 /* Creates a chunked dataset of rank `rank` whose leading dimensions marked
  * unlimited start at 0.  dims gives the fixed trailing sizes (leading entries

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "parallel.h"
 
 static const cli_command *const commands[] = {
     &cmd_info,
@@ -17,8 +18,20 @@ static const cli_command *const commands[] = {
     &cmd_shearband,
     &cmd_rheology,
     &cmd_energy,
+    &cmd_xdmf,
+    &cmd_disperse,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
+
+/* The commands that split their frames over MPI ranks (docs/parallel.md). */
+static int frame_parallel(const char *name)
+{
+    static const char *const names[] = {"average", "voronoi", "shearband", "disperse"};
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
+        if (!strcmp(names[k], name))
+            return 1;
+    return 0;
+}
 
 static void usage(FILE *out)
 {
@@ -53,7 +66,21 @@ static const cli_command *find(const char *name)
     return NULL;
 }
 
+static int dispatch(int argc, char **argv);
+
 int main(int argc, char **argv)
+{
+    /* under mpirun: MPI for the frame-parallel commands (docs/parallel.md) */
+    if (mimas_par_init(&argc, &argv)) {
+        fprintf(stderr, "mimas: MPI could not start\n");
+        return 2;
+    }
+    int rc = dispatch(argc, argv);
+    mimas_par_finalize();
+    return rc;
+}
+
+static int dispatch(int argc, char **argv)
 {
     /* the library checks GSL's return codes (a fit that fails has a status);
      * GSL's default handler would abort the program instead */
@@ -64,7 +91,10 @@ int main(int argc, char **argv)
     }
     const char *name = argv[1];
     if (!strcmp(name, "--version") || !strcmp(name, "-V")) {
-        printf("mimas %s\n", PACKAGE_VERSION);
+        const char *mpi = mimas_par_library();
+        if (mimas_par_rank() == 0)
+            printf("mimas %s (%s)\n", PACKAGE_VERSION,
+                   mpi ? mpi : "serial build, without MPI");
         return 0;
     }
     if (!strcmp(name, "--help") || !strcmp(name, "-h")) {
@@ -102,5 +132,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "mimas: unknown command '%s' (see mimas help)\n", name);
         return 1;
     }
-    return c->run(c, argc - 1, argv + 1);
+    if (mimas_par_size() == 1 || frame_parallel(c->name))
+        return c->run(c, argc - 1, argv + 1);
+    /* under mpirun, a command that is not frame-parallel runs on rank 0 alone;
+     * the other ranks end with its exit status */
+    int status = mimas_par_rank() == 0 ? c->run(c, argc - 1, argv + 1) : 0;
+    mimas_par_share(MIMAS_OK, &status, sizeof status, NULL);
+    return status;
 }

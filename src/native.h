@@ -15,7 +15,7 @@ extern "C" {
 #endif
 
 #define MIMAS_NATIVE_VERSION_MAJOR 1
-#define MIMAS_NATIVE_VERSION_MINOR 0
+#define MIMAS_NATIVE_VERSION_MINOR 1
 
 /* ---- writer ---- */
 typedef struct mimas_writer mimas_writer;
@@ -26,6 +26,7 @@ typedef struct mimas_writer_options {
     int triclinic;      /* store edge vectors even if the first box is orthogonal */
     const char *author; /* H5MD author name (default: $USER or "unknown") */
     const char *provenance; /* free text, e.g. the command line (may be NULL) */
+    int xdmf;           /* on close, write the XDMF sidecar (FILE.xdmf) for ParaView */
 } mimas_writer_options;
 
 void mimas_writer_options_default(mimas_writer_options *o);
@@ -88,6 +89,20 @@ size_t mimas_native_observables(const mimas_native *r);
 const char *mimas_native_observable_name(const mimas_native *r, size_t i, const char **unit);
 int mimas_native_observable_read(mimas_native *r, size_t i, size_t k0, size_t n, double *values,
                                  mimas_error *err);
+/* The per-particle datasets as stored (for sidecars such as XDMF): name
+ * (the element under /particles/all), the stored number type, components and
+ * the dataset's extent (frames [including any not yet committed], slots
+ * [, components]). */
+typedef struct mimas_native_column {
+    const char *name;
+    int is_float;       /* floating point, else integer */
+    int precision;      /* bytes per value */
+    int ncomp;
+    int rank;
+    unsigned long long dims[3];
+} mimas_native_column;
+size_t mimas_native_particle_columns(const mimas_native *r);
+void mimas_native_particle_column(const mimas_native *r, size_t k, mimas_native_column *c);
 void mimas_native_close(mimas_native *r);
 
 #ifdef __cplusplus

@@ -14,6 +14,9 @@
 #define NATIVE_CONTACTS "/contacts/all"
 #define NATIVE_WALLS "/contacts/walls"
 #define NATIVE_MIMAS "/mimas"
+/* format 1.1: the tube of a tube-flow run, gas fields on a grid */
+#define NATIVE_TUBE "/parameters/tube"
+#define NATIVE_GAS "/fields/gas"
 /* per-particle elements share the step and time datasets of this one */
 #define NATIVE_CLOCK NATIVE_PARTICLES "/position"
 

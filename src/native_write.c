@@ -2,7 +2,17 @@
  * each append ends with a flush, and file space is only ever taken from the
  * end of the file, so what a flush committed is never overwritten later: a
  * process killed in the middle of a frame leaves a file whose committed
- * frames read back intact. */
+ * frames read back intact.
+ *
+ * The file is written in HDF5's single-writer/multiple-reader mode (SWMR,
+ * file format of HDF5 1.10): every object (group, dataset, attribute) is
+ * created before the first frame is committed, which then switches the file
+ * to SWMR writing; from there on frames only extend datasets, and readers
+ * opening the file with SWMR read see every committed frame while the
+ * writer goes on.  A frame is committed in two flushes: its data, then the
+ * per-frame index (particle count, step and time, contact offsets) that
+ * makes it visible, so a reader never sees a frame whose data are not on
+ * disk. */
 #include <config.h>
 
 #include "native.h"
@@ -14,6 +24,7 @@
 
 #include "h5util.h"
 #include "native_layout.h"
+#include "xdmf.h"
 #include "outfile.h"
 #include "parameters_h5.h"
 
@@ -27,6 +38,7 @@ typedef struct flat_table {
     const char *group;
     hid_t step, time, offset;
     hsize_t rows;          /* rows committed so far over all frames */
+    hsize_t staged_rows;   /* rows including the staged frame's */
     size_t ncols;
     native_col *cols;
 } flat_table;
@@ -37,6 +49,10 @@ struct mimas_writer {
     mimas_writer_options opt;
     hid_t file;
     size_t frames;
+    int swmr;              /* the file is in SWMR writing mode */
+    /* the frame staged and not yet committed: its step, time, particle count */
+    int64_t staged_step, staged_n;
+    double staged_time;
     /* frame layout, fixed by the first frame */
     int started;
     int triclinic;
@@ -50,6 +66,12 @@ struct mimas_writer {
     size_t npcols;
     native_col *pcols;
     flat_table contacts, walls;
+    /* format 1.1: the tube (fixed over the file) and the gas fields */
+    mimas_tube tube;
+    int has_gas;
+    size_t gas_cells[3];
+    double gas_origin[3], gas_spacing[3];
+    hid_t gas_ds[3];                /* pressure, porosity, velocity */
     /* scratch for index -> id conversion */
     int64_t *ids;
     size_t ids_cap;
@@ -81,9 +103,8 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
                       mimas_error *err)
 {
     *out = NULL;
-    if (mimas_path_is_special(path))
-        return mimas_error_set(err, MIMAS_EUSAGE, "%s: not a regular file (a native file needs "
-                               "one)", path);
+    if (o && o->atomic && mimas_output_check(path, err))
+        return err->code;
     mimas_writer *w = calloc(1, sizeof *w);
     if (!w)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
@@ -118,6 +139,8 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
     H5Pset_file_space_strategy(fcpl, H5F_FSPACE_STRATEGY_NONE, 0, (hsize_t)1);
     hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
     H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
+    /* SWMR needs the HDF5 1.10 file format (and no newer: 1.10 reads it) */
+    H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110);
     w->file = H5Fcreate(w->open_path, H5F_ACC_TRUNC, fcpl, fapl);
     H5Pclose(fapl);
     H5Pclose(fcpl);
@@ -133,14 +156,24 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
         hid_t ga = H5Gcreate2(g, "author", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
         hid_t gc = H5Gcreate2(g, "creator", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
         hid_t gm = H5Gcreate2(w->file, NATIVE_MIMAS, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-        if (g < 0 || ga < 0 || gc < 0 || gm < 0 ||
+        /* the H5MD units module: every unit attribute is an SI unit string */
+        hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+        H5Pset_create_intermediate_group(lcpl, 1);
+        hid_t gu = g < 0 ? H5I_INVALID_HID
+                         : H5Gcreate2(g, "modules/units", lcpl, H5P_DEFAULT, H5P_DEFAULT);
+        H5Pclose(lcpl);
+        int units_version[2] = {1, 0};
+        if (g < 0 || ga < 0 || gc < 0 || gm < 0 || gu < 0 ||
+            h5_attr_write_ints(gu, "version", units_version, 2) ||
+            h5_attr_write_vlstr(gu, "system", "SI") ||
             h5_attr_write_ints(g, "version", version, 2) ||
-            h5_attr_write_str(ga, "name", author && author[0] ? author : "unknown") ||
-            h5_attr_write_str(gc, "name", PACKAGE_NAME) ||
-            h5_attr_write_str(gc, "version", PACKAGE_VERSION) ||
+            h5_attr_write_vlstr(ga, "name", author && author[0] ? author : "unknown") ||
+            h5_attr_write_vlstr(gc, "name", PACKAGE_NAME) ||
+            h5_attr_write_vlstr(gc, "version", PACKAGE_VERSION) ||
             h5_attr_write_ints(gm, "format_version", fmt, 2) ||
             (w->opt.provenance && h5_attr_write_str(gm, "provenance", w->opt.provenance)))
             rc = h5fail(w, err, "write the file header");
+        H5Gclose(gu);
         H5Gclose(gm);
         H5Gclose(gc);
         H5Gclose(ga);
@@ -184,7 +217,7 @@ static hid_t make_element(mimas_writer *w, const char *path, hid_t type, int ran
     hid_t ds = h5_create_growing(g, "value", type, rank, n_unlimited, dims, chunk, fill,
                                  deflate);
     if (ds >= 0 && unit && strcmp(unit, "1") != 0)
-        h5_attr_write_str(ds, "unit", unit);
+        h5_attr_write_vlstr(ds, "unit", unit);
     if (ds >= 0 && strcmp(path, NATIVE_CLOCK) != 0 &&
         (H5Lcreate_hard(w->clock_step, ".", g, "step", H5P_DEFAULT, H5P_DEFAULT) < 0 ||
          H5Lcreate_hard(w->clock_time, ".", g, "time", H5P_DEFAULT, H5P_DEFAULT) < 0)) {
@@ -211,7 +244,7 @@ static int create_particles(mimas_writer *w, const mimas_frame *f, mimas_error *
     H5Gclose(g);
     if (w->clock_step < 0 || w->clock_time < 0)
         return h5fail(w, err, "create the step and time datasets");
-    if (h5_attr_write_str(w->clock_time, "unit", "s"))
+    if (h5_attr_write_vlstr(w->clock_time, "unit", "s"))
         return h5fail(w, err, "write an attribute");
 
     w->pcols = calloc(mimas_particles_desc.ncolumns + p->n_extra, sizeof *w->pcols);
@@ -271,6 +304,60 @@ static int create_particles(mimas_writer *w, const mimas_frame *f, mimas_error *
     return MIMAS_OK;
 }
 
+/* The tube as attributes of /parameters/tube; HDF5 attributes carry no
+ * attributes of their own, so each unit is the attribute NAME_unit. */
+static int create_tube(mimas_writer *w, const mimas_tube *t, mimas_error *err)
+{
+    hid_t g = make_group(w->file, NATIVE_TUBE);
+    if (g < 0)
+        return h5fail(w, err, "create " NATIVE_TUBE);
+    int bad = h5_attr_write_doubles(g, "origin", t->origin, 3) ||
+              h5_attr_write_str(g, "origin_unit", "m") ||
+              h5_attr_write_doubles(g, "direction", t->direction, 3) ||
+              h5_attr_write_str(g, "direction_unit", "1") ||
+              h5_attr_write_double(g, "radius", t->radius) ||
+              h5_attr_write_str(g, "radius_unit", "m") ||
+              h5_attr_write_double(g, "length", t->length) ||
+              h5_attr_write_str(g, "length_unit", "m");
+    H5Gclose(g);
+    return bad ? h5fail(w, err, "write the tube attributes") : MIMAS_OK;
+}
+
+static const char *const gas_names[3] = {"pressure", "porosity", "velocity"};
+static const char *const gas_units[3] = {"Pa", "1", "m s-1"};
+
+/* /fields/gas: the grid as attributes, each field an H5MD time-dependent
+ * element of shape (frames, nz, ny, nx[, 3]) sharing the particles' clock */
+static int create_gas(mimas_writer *w, const mimas_gas *gs, mimas_error *err)
+{
+    w->has_gas = 1;
+    memcpy(w->gas_cells, gs->cells, sizeof w->gas_cells);
+    memcpy(w->gas_origin, gs->origin, sizeof w->gas_origin);
+    memcpy(w->gas_spacing, gs->spacing, sizeof w->gas_spacing);
+    hid_t g = make_group(w->file, NATIVE_GAS);
+    if (g < 0)
+        return h5fail(w, err, "create " NATIVE_GAS);
+    int64_t cells[3] = {(int64_t)gs->cells[0], (int64_t)gs->cells[1], (int64_t)gs->cells[2]};
+    int bad = h5_attr_write_doubles(g, "origin", gs->origin, 3) ||
+              h5_attr_write_str(g, "origin_unit", "m") ||
+              h5_attr_write_doubles(g, "spacing", gs->spacing, 3) ||
+              h5_attr_write_str(g, "spacing_unit", "m") || h5_attr_write_int64s(g, "cells", cells, 3);
+    H5Gclose(g);
+    if (bad)
+        return h5fail(w, err, "write the gas grid attributes");
+    for (int k = 0; k < 3; k++) {
+        char path[128];
+        snprintf(path, sizeof path, NATIVE_GAS "/%s", gas_names[k]);
+        hsize_t dims[5] = {0, gs->cells[2], gs->cells[1], gs->cells[0], 3};
+        hsize_t chunk[5] = {1, gs->cells[2], gs->cells[1], gs->cells[0], 3};
+        w->gas_ds[k] = make_element(w, path, H5T_IEEE_F64LE, k == 2 ? 5 : 4, 1, dims, chunk, NULL,
+                                    w->opt.deflate, gas_units[k]);
+        if (w->gas_ds[k] < 0)
+            return h5fail(w, err, "create the gas fields");
+    }
+    return MIMAS_OK;
+}
+
 static int create_flat(mimas_writer *w, flat_table *t, const void *tab, mimas_error *err)
 {
     hid_t g = make_group(w->file, t->group);
@@ -294,7 +381,7 @@ static int create_flat(mimas_writer *w, flat_table *t, const void *tab, mimas_er
     herr_t hr = H5Dwrite(t->offset, H5T_NATIVE_INT64, ms, fs, H5P_DEFAULT, &first);
     H5Sclose(ms);
     H5Sclose(fs);
-    h5_attr_write_str(t->time, "unit", "s");
+    h5_attr_write_vlstr(t->time, "unit", "s");
     if (hr < 0) {
         H5Gclose(g);
         return h5fail(w, err, "write the contact offsets");
@@ -318,7 +405,7 @@ static int create_flat(mimas_writer *w, flat_table *t, const void *tab, mimas_er
         }
         const char *unit = native_col_unit(tab, t->desc, nc);
         if (unit && strcmp(unit, "1") != 0)
-            h5_attr_write_str(nc->ds, "unit", unit);
+            h5_attr_write_vlstr(nc->ds, "unit", unit);
         if (nc->type == MIMAS_T_INDEX)
             h5_attr_write_str(nc->ds, "meaning", "particle id (the id element of " NATIVE_PARTICLES ")");
     }
@@ -351,6 +438,13 @@ static int extras_match(const void *tab, const mimas_table_desc *d, const native
     return MIMAS_OK;
 }
 
+static int same_tube(const mimas_tube *a, const mimas_tube *b)
+{
+    return memcmp(a->origin, b->origin, sizeof a->origin) == 0 &&
+           memcmp(a->direction, b->direction, sizeof a->direction) == 0 &&
+           a->radius == b->radius && a->length == b->length;
+}
+
 static int check_same_layout(mimas_writer *w, const mimas_frame *f, mimas_error *err)
 {
     int rc = MIMAS_OK;
@@ -373,6 +467,13 @@ static int check_same_layout(mimas_writer *w, const mimas_frame *f, mimas_error 
                              "(write with the triclinic option)");
     else if (memcmp(w->periodic, f->box.periodic, sizeof w->periodic) != 0)
         rc = mimas_error_set(err, MIMAS_EDATA, "the periodic boundaries change between frames");
+    else if (f->tube.present != w->tube.present || (w->tube.present && !same_tube(&f->tube, &w->tube)))
+        rc = mimas_error_set(err, MIMAS_EDATA, "the tube changes between frames");
+    else if (f->gas.present != w->has_gas ||
+             (w->has_gas && (memcmp(f->gas.cells, w->gas_cells, sizeof w->gas_cells) != 0 ||
+                             memcmp(f->gas.origin, w->gas_origin, sizeof w->gas_origin) != 0 ||
+                             memcmp(f->gas.spacing, w->gas_spacing, sizeof w->gas_spacing) != 0)))
+        rc = mimas_error_set(err, MIMAS_EDATA, "the gas grid changes between frames");
     if (!rc)
         rc = extras_match(&f->particles, &mimas_particles_desc, w->pcols, w->npcols,
                           "particles", err);
@@ -399,6 +500,12 @@ static int start_layout(mimas_writer *w, const mimas_frame *f, mimas_error *err)
     w->walls.desc = &mimas_walls_desc;
     w->walls.group = NATIVE_WALLS;
     int rc = create_particles(w, f, err);
+    if (!rc && f->tube.present) {
+        w->tube = f->tube;
+        rc = create_tube(w, &f->tube, err);
+    }
+    if (!rc && f->gas.present)
+        rc = create_gas(w, &f->gas, err);
     if (!rc && w->has_contacts)
         rc = create_flat(w, &w->contacts, &f->contacts, err);
     if (!rc && w->has_walls)
@@ -483,11 +590,23 @@ static int stage_particles(mimas_writer *w, const mimas_frame *f, mimas_error *e
         H5Dset_extent(w->box_lower, ext) < 0 ||
         write_block(w->box_lower, H5T_NATIVE_DOUBLE, 2, start, count, f->box.lo) < 0 ||
         H5Dset_extent(w->box_upper, ext) < 0 ||
-        write_block(w->box_upper, H5T_NATIVE_DOUBLE, 2, start, count, f->box.hi) < 0 ||
-        append_scalar(w->count, k, H5T_NATIVE_INT64, &n) < 0 ||
-        append_scalar(w->clock_step, k, H5T_NATIVE_INT64, &f->step) < 0 ||
-        append_scalar(w->clock_time, k, H5T_NATIVE_DOUBLE, &f->time) < 0)
-        return h5fail(w, err, "write the box, count, step and time");
+        write_block(w->box_upper, H5T_NATIVE_DOUBLE, 2, start, count, f->box.hi) < 0)
+        return h5fail(w, err, "write the box");
+    w->staged_step = f->step;
+    w->staged_time = f->time;
+    w->staged_n = n;
+    for (int g = 0; g < 3 && w->has_gas; g++) {
+        const size_t *c = w->gas_cells;
+        hsize_t gext[5] = {k + 1, c[2], c[1], c[0], 3}, gstart[5] = {k, 0, 0, 0, 0};
+        hsize_t gcount[5] = {1, c[2], c[1], c[0], 3};
+        const void *data = g == 0 ? (const void *)f->gas.pressure
+                           : g == 1 ? (const void *)f->gas.porosity
+                                    : (const void *)f->gas.velocity;
+        int rank = g == 2 ? 5 : 4;
+        if (H5Dset_extent(w->gas_ds[g], gext) < 0 ||
+            write_block(w->gas_ds[g], H5T_NATIVE_DOUBLE, rank, gstart, gcount, data) < 0)
+            return h5fail(w, err, "write the gas fields");
+    }
     return MIMAS_OK;
 }
 
@@ -512,12 +631,7 @@ static int stage_flat(mimas_writer *w, flat_table *t, const void *tab, const mim
             write_block(nc->ds, native_mem_type(nc->type), rank, start, count, data) < 0)
             return h5fail(w, err, "write contact data");
     }
-    int64_t off = (int64_t)end;
-    if (append_scalar(t->offset, w->frames + 1, H5T_NATIVE_INT64, &off) < 0 ||
-        append_scalar(t->step, w->frames, H5T_NATIVE_INT64, &f->step) < 0 ||
-        append_scalar(t->time, w->frames, H5T_NATIVE_DOUBLE, &f->time) < 0)
-        return h5fail(w, err, "write the contact index");
-    t->rows = end;
+    t->staged_rows = end;
     return MIMAS_OK;
 }
 
@@ -617,8 +731,37 @@ static void release_observables(mimas_writer *w)
     memset(o, 0, sizeof *o);
 }
 
-/* Everything of an append except the commit (flush); split out so that the
- * crash-recovery test can stop a writer between the two. */
+/* The per-frame index of a flat table: what makes the staged frame's rows
+ * visible. */
+static int index_flat(mimas_writer *w, flat_table *t, mimas_error *err)
+{
+    int64_t off = (int64_t)t->staged_rows;
+    if (append_scalar(t->offset, w->frames + 1, H5T_NATIVE_INT64, &off) < 0 ||
+        append_scalar(t->step, w->frames, H5T_NATIVE_INT64, &w->staged_step) < 0 ||
+        append_scalar(t->time, w->frames, H5T_NATIVE_DOUBLE, &w->staged_time) < 0)
+        return h5fail(w, err, "write the contact index");
+    t->rows = t->staged_rows;
+    return MIMAS_OK;
+}
+
+/* The particle count, step and time of the staged frame, then those of the
+ * contact tables. */
+static int write_index(mimas_writer *w, mimas_error *err)
+{
+    hsize_t k = w->frames;
+    if (append_scalar(w->count, k, H5T_NATIVE_INT64, &w->staged_n) < 0 ||
+        append_scalar(w->clock_step, k, H5T_NATIVE_INT64, &w->staged_step) < 0 ||
+        append_scalar(w->clock_time, k, H5T_NATIVE_DOUBLE, &w->staged_time) < 0)
+        return h5fail(w, err, "write the particle count, step and time");
+    int rc = w->has_contacts ? index_flat(w, &w->contacts, err) : MIMAS_OK;
+    if (!rc && w->has_walls)
+        rc = index_flat(w, &w->walls, err);
+    return rc;
+}
+
+/* Everything of an append except the commit (the flushes and the per-frame
+ * index); split out so that the crash-recovery test can stop a writer
+ * between the two. */
 int mimas_writer_stage(mimas_writer *w, const mimas_frame *f, mimas_error *err);
 int mimas_writer_commit(mimas_writer *w, mimas_error *err);
 
@@ -650,7 +793,19 @@ int mimas_writer_commit(mimas_writer *w, mimas_error *err)
 {
     h5_quiet q;
     h5_quiet_begin(&q);
+    /* the data first, then the index that makes the frame visible */
     int rc = H5Fflush(w->file, H5F_SCOPE_LOCAL) < 0 ? h5fail(w, err, "flush") : MIMAS_OK;
+    if (!rc)
+        rc = write_index(w, err);
+    if (!rc && H5Fflush(w->file, H5F_SCOPE_LOCAL) < 0)
+        rc = h5fail(w, err, "flush");
+    /* every object exists now: from here on readers may follow the file */
+    if (!rc && !w->swmr) {
+        if (H5Fstart_swmr_write(w->file) < 0)
+            rc = h5fail(w, err, "switch to single-writer/multiple-reader mode");
+        else
+            w->swmr = 1;
+    }
     h5_quiet_end(&q);
     if (!rc)
         w->frames++;
@@ -687,9 +842,9 @@ static herr_t release(mimas_writer *w)
     close_cols(w->pcols, w->npcols);
     close_flat(&w->contacts);
     close_flat(&w->walls);
-    hid_t ids[6] = {w->clock_step, w->clock_time, w->box_edges,
-                    w->box_lower, w->box_upper, w->count};
-    for (int k = 0; k < 6; k++)
+    hid_t ids[9] = {w->clock_step, w->clock_time, w->box_edges, w->box_lower, w->box_upper,
+                    w->count, w->gas_ds[0], w->gas_ds[1], w->gas_ds[2]};
+    for (int k = 0; k < 9; k++)
         if (ids[k] > 0)
             H5Dclose(ids[k]);
     release_observables(w);
@@ -709,6 +864,13 @@ int mimas_writer_close(mimas_writer *w, mimas_error *err)
                              w->path);
     if (rc)
         remove(w->open_path);
+    if (!rc && w->opt.xdmf) {
+        /* the sidecar describes the finished file (a failure leaves no sidecar,
+         * and the trajectory itself complete) */
+        char sidecar[4200];
+        mimas_xdmf_path(w->path, NULL, sidecar, sizeof sidecar);
+        rc = mimas_xdmf_trajectory(w->path, sidecar, err);
+    }
     free(w->path);
     free(w->open_path);
     free(w);

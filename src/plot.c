@@ -1,7 +1,6 @@
 #include <config.h>
 
 #include "plot.h"
-
 #include "outfile.h"
 
 #include <errno.h>
@@ -51,9 +50,8 @@ static void path_in(const mimas_plot *p, const char *name, char *buf, size_t len
 int mimas_plot_open(mimas_plot **out, const char *png, mimas_error *err)
 {
     *out = NULL;
-    if (mimas_path_is_special(png))
-        return mimas_error_set(err, MIMAS_EUSAGE, "%s: not a regular file (a picture is written "
-                               "under a temporary name and renamed into place)", png);
+    if (mimas_output_check(png, err))
+        return err->code;
     mimas_plot *p = calloc(1, sizeof *p);
     if (!p)
         return mimas_error_set(err, MIMAS_EIO, "out of memory");

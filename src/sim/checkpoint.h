@@ -9,9 +9,20 @@
 
 #include "dem.h"
 
-int sim_checkpoint_write(const dem_system *s, const char *path, mimas_error *err);
+/* State of a scenario beyond the DEM system (a gas field, a feed), saved
+ * and restored as raw blocks of fixed size. */
+typedef struct sim_ck_chunk {
+    void *data;
+    size_t size;
+} sim_ck_chunk;
+
+int sim_checkpoint_write(const dem_system *s, const sim_ck_chunk *extra, size_t nextra,
+                         const char *path, mimas_error *err);
 /* Restores the state into s, which must have been set up from the same
- * scenario (same particle count and walls). */
-int sim_checkpoint_read(dem_system *s, const char *path, mimas_error *err);
+ * scenario (same walls and moving parts; the particle count may differ, for
+ * scenarios that insert and remove particles), and the extra blocks, which
+ * must have the sizes they were written with. */
+int sim_checkpoint_read(dem_system *s, const sim_ck_chunk *extra, size_t nextra,
+                        const char *path, mimas_error *err);
 
 #endif

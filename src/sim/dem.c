@@ -76,7 +76,7 @@ size_t dem_add_particle(dem_system *s, int32_t type, double radius, double densi
                         const double x[3])
 {
     size_t k = s->n++;
-    s->id[k] = (int64_t)k + 1;
+    s->id[k] = ++s->last_id;
     s->type[k] = type;
     s->radius[k] = radius;
     s->mass[k] = density * 4.0 / 3.0 * M_PI * radius * radius * radius;
@@ -87,12 +87,81 @@ size_t dem_add_particle(dem_system *s, int32_t type, double radius, double densi
     return k;
 }
 
+int dem_remove(dem_system *s, const uint8_t *drop, mimas_error *err)
+{
+    size_t n = s->n, m = 0;
+    size_t *to = malloc((n ? n : 1) * sizeof *to);
+    if (!to)
+        return mimas_error_set(err, MIMAS_EIO, "out of memory removing particles");
+    for (size_t k = 0; k < n; k++)
+        to[k] = drop[k] ? SIZE_MAX : m++;
+    if (m == n) {
+        free(to);
+        return MIMAS_OK;
+    }
+    const size_t nw = DEM_MAX_WALLS;
+    for (size_t k = 0; k < n; k++) {
+        size_t q = to[k];
+        if (q == SIZE_MAX || q == k)
+            continue;
+#define MOVE(a) memcpy(&s->a[q], &s->a[k], sizeof *s->a);
+        PARTICLE_ARRAYS(MOVE)
+#undef MOVE
+        memcpy(&s->wall_xi[q * nw], &s->wall_xi[k * nw], nw * sizeof *s->wall_xi);
+        memcpy(&s->wall_f[q * nw], &s->wall_f[k * nw], nw * sizeof *s->wall_f);
+        memcpy(&s->wall_delta[q * nw], &s->wall_delta[k * nw], nw * sizeof *s->wall_delta);
+    }
+    s->n = m;
+    /* the list in the new numbering: entries of two staying particles */
+    dem_nlist *nl = &s->nl;
+    int rc = MIMAS_OK;
+    if (nl->start && nl->n == n) {
+        size_t ne = 0, *start = malloc((m + 1) * sizeof *start);
+        if (!start) {
+            free(to);
+            return mimas_error_set(err, MIMAS_EIO, "out of memory removing particles");
+        }
+        start[0] = 0;
+        for (size_t i = 0; i < n; i++) {
+            if (to[i] == SIZE_MAX)
+                continue;
+            for (size_t k = nl->start[i]; k < nl->start[i + 1]; k++) {
+                size_t j = to[nl->e[k].j];
+                if (j == SIZE_MAX)
+                    continue;
+                nl->e[ne] = nl->e[k];
+                nl->e[ne].j = (int32_t)j;
+                nl->bv[ne] = nl->bv[k];
+                ne++;
+            }
+            start[to[i] + 1] = ne;
+        }
+        free(nl->start);
+        nl->start = start;
+        nl->ne = ne;
+        nl->n = m;
+        rc = dem_neighbours_transpose(nl, err);
+    }
+    free(to);
+    return rc;
+}
+
 int dem_add_wall(dem_system *s, const dem_wall *w, mimas_error *err)
 {
     if (s->nwalls >= DEM_MAX_WALLS)
         return mimas_error_set(err, MIMAS_EUSAGE, "more than %d walls", DEM_MAX_WALLS);
     s->walls[s->nwalls++] = *w;
     return MIMAS_OK;
+}
+
+double dem_law_contact_time(const dem_law *L, double m_eff)
+{
+    double g = L->damping_factor > 0 ? L->damping_factor * sqrt(L->k_n * m_eff) : L->gamma_n;
+    if (L->k_n / m_eff <= (g / (2 * m_eff)) * (g / (2 * m_eff)))
+        return 0;   /* overdamped: no oscillation, no contact time */
+    double tc, e;
+    dem_linear_collision(L->k_n, g, m_eff, L->clip, &tc, &e);
+    return tc;
 }
 
 int dem_configure(dem_system *s, const sim_scenario *sc, mimas_error *err)
@@ -106,7 +175,7 @@ int dem_configure(dem_system *s, const sim_scenario *sc, mimas_error *err)
     for (int a = 0; a < SIM_MAX_TYPES; a++)
         for (int b = 0; b < SIM_MAX_TYPES; b++)
             dem_law_make(&s->law[a][b], &sc->contact[a][b], sc->coarse_grain);
-    /* liquid carried by each particle: V_L = D rho_p V_p / rho_f (PHYSICS 2.4) */
+    /* liquid carried by each particle: V_L = D rho_p V_p / rho_f (docs/theory.md §2.4) */
     s->bridges_on = sc->liquid_content > 0;
     double vmax = 0;
     for (size_t k = 0; k < s->n; k++) {
@@ -127,7 +196,7 @@ int dem_configure(dem_system *s, const sim_scenario *sc, mimas_error *err)
                 if (sc_ab > s->bridge_range)
                     s->bridge_range = sc_ab;
             }
-    /* the time-step guard (PHYSICS 3): dt <= t_c/50 for the linear laws */
+    /* the time-step guard (docs/theory.md §3): dt <= t_c/50 for the linear laws */
     if (sc->dt_guard) {
         double mmin = INFINITY;
         for (size_t k = 0; k < s->n; k++)
@@ -139,13 +208,8 @@ int dem_configure(dem_system *s, const sim_scenario *sc, mimas_error *err)
                 if (L->model != SIM_LINEAR)
                     continue;
                 double m_eff = a == 0 ? mmin : mmin / 2;
-                double g = L->damping_factor > 0 ? L->damping_factor * sqrt(L->k_n * m_eff)
-                                                 : L->gamma_n;
-                double tc, e;
-                if (L->k_n / m_eff <= (g / (2 * m_eff)) * (g / (2 * m_eff)))
-                    continue;   /* overdamped: no oscillation, no contact time */
-                dem_linear_collision(L->k_n, g, m_eff, L->clip, &tc, &e);
-                if (s->dt > tc / 50)
+                double tc = dem_law_contact_time(L, m_eff);
+                if (tc > 0 && s->dt > tc / 50)
                     return mimas_error_set(err, MIMAS_EDATA,
                                            "dt = %g s is larger than t_c/50 = %g s of the "
                                            "contact law (types %d-%d); lower dt or set "

@@ -37,6 +37,12 @@ typedef struct dem_motion {
     double omega, axis[2], velocity[3];
     double angle, shift[3];  /* turned and moved so far */
     double cos_angle, sin_angle;   /* of angle, once per step for all its particles */
+    /* release plane (a feed): with release set, a particle of this motion
+     * becomes free (keeping its velocity) once release_normal . x >=
+     * release_offset, and takes the type release_type (0: keeps its own) */
+    int release;
+    double release_normal[3], release_offset;
+    int32_t release_type;
 } dem_motion;
 #define DEM_MAX_MOTIONS 4
 
@@ -69,7 +75,20 @@ typedef struct dem_nlist {
     size_t builds;           /* how many times it was built */
 } dem_nlist;
 
-typedef struct dem_system {
+/* Hooks of a scenario into the time step (all optional).  edit runs before
+ * every neighbour-list build that dem_neighbours_update decides on: it may
+ * remove particles (dem_remove) and append new ones (dem_add_particle); the
+ * contact histories of the particles that stay carry over.  body_forces runs
+ * at the end of dem_forces and adds forces to the free particles (a fluid:
+ * drag, buoyancy). */
+typedef struct dem_system dem_system;
+typedef struct dem_hooks {
+    void *ctx;
+    int (*edit)(void *ctx, dem_system *s, mimas_error *err);
+    void (*body_forces)(void *ctx, dem_system *s);
+} dem_hooks;
+
+struct dem_system {
     /* particles (struct of arrays) */
     size_t n, cap;
     int64_t *id;
@@ -106,16 +125,26 @@ typedef struct dem_system {
     int nmotions;
     int glued_interact;                /* glued particles interact with each other */
     dem_nlist nl;
-} dem_system;
+    int64_t last_id;                   /* ids are never reused: the next is last_id + 1 */
+    int64_t force_step;                /* the step whose positions dem_forces works on */
+    dem_hooks hooks;
+};
 
 void dem_init(dem_system *s);
 void dem_free(dem_system *s);
 /* Makes room for n particles (arrays zeroed beyond the old size). */
 int dem_reserve(dem_system *s, size_t n, mimas_error *err);
-/* Adds a free particle of type, radius, density at x (returns its index). */
+/* Adds a free particle of type, radius, density at x (returns its index);
+ * its id is one more than the last id given. */
 size_t dem_add_particle(dem_system *s, int32_t type, double radius, double density,
                         const double x[3]);
+/* Removes the particles k with drop[k] != 0, keeping the order of the others,
+ * their wall histories and their entries in the neighbour list (renumbered). */
+int dem_remove(dem_system *s, const uint8_t *drop, mimas_error *err);
 int dem_add_wall(dem_system *s, const dem_wall *w, mimas_error *err);
+/* Duration of a collision of the linear law L for effective mass m_eff (with
+ * its clip: the time of repulsion), or 0 if the contact is overdamped. */
+double dem_law_contact_time(const dem_law *L, double m_eff);
 /* Sets laws, dt, skin, gravity, rotation, liquid from the scenario. */
 int dem_configure(dem_system *s, const sim_scenario *sc, mimas_error *err);
 

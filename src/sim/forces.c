@@ -19,7 +19,7 @@ static double pair_overlap(const dem_system *s, size_t i, size_t j, double d[3],
     return s->radius[i] + s->radius[j] - *dist;
 }
 
-/* Liquid bridges, first pass (PHYSICS 2.4): a bridge forms at first touch and
+/* Liquid bridges, first pass (docs/theory.md §2.4): a bridge forms at first touch and
  * breaks beyond its rupture distance; then every particle counts its
  * bridges.  The second pass shares the liquid with these counts, so the
  * result does not depend on the order in which pairs are visited. */
@@ -230,4 +230,6 @@ void dem_forces(dem_system *s)
         memcpy(s->f[i], f, sizeof f);
         memcpy(s->t[i], t, sizeof t);
     }
+    if (s->hooks.body_forces)
+        s->hooks.body_forces(s->hooks.ctx, s);
 }

@@ -1,4 +1,4 @@
-/* Velocity Verlet (PHYSICS.md 3; 002 eq. 2.2, 004 eq. 3.36-3.37) for the free
+/* Velocity Verlet (docs/theory.md §3; Bierwisch 2009, eq. 2.2; Strauß 2005, eq. 3.36-3.37) for the free
  * particles; glued particles follow their rigid motion exactly. */
 #include <config.h>
 
@@ -51,6 +51,12 @@ static void drift(dem_system *s)
         s->v[k][2] = mo->velocity[2];
         s->w[k][0] = s->w[k][1] = 0;
         s->w[k][2] = mo->omega;
+        if (mo->release && s->x[k][0] * mo->release_normal[0] + s->x[k][1] * mo->release_normal[1] +
+                                   s->x[k][2] * mo->release_normal[2] >= mo->release_offset) {
+            s->glued[k] = -1;   /* free from here on, with the motion's velocity */
+            if (mo->release_type > 0)
+                s->type[k] = mo->release_type;
+        }
     }
 }
 
@@ -60,6 +66,7 @@ int dem_step(dem_system *s, mimas_error *err)
     drift(s);
     if (dem_neighbours_update(s, err) < 0)
         return err->code;
+    s->force_step = s->step + 1;
     dem_forces(s);
     kick(s, 0.5 * s->dt);
     s->step++;

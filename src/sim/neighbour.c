@@ -1,4 +1,4 @@
-/* Linked cells and Verlet lists (PHYSICS.md 3): particles are sorted by cell,
+/* Linked cells and Verlet lists (docs/theory.md §3): particles are sorted by cell,
  * each pair is found once through a half shell of 13 neighbour cells, the
  * list holds every pair closer than R_i + R_j + skin (+ the longest liquid
  * bridge) and is rebuilt when a particle has moved more than skin/2.  The
@@ -164,12 +164,12 @@ static int sort_by_cell(dem_system *s, cell_grid *g, size_t *old_of, mimas_error
 
 /* The history of pair (oi, oj) (old indices) in the old list, oriented as i
  * relative to j, into *h and *bv; zero if the pair was not listed. */
-static void old_history(const size_t *ostart, const dem_entry *oe, const double *obv, size_t oi,
-                        size_t oj, dem_entry *h, double *bv)
+static void old_history(const size_t *ostart, size_t on, const dem_entry *oe, const double *obv,
+                        size_t oi, size_t oj, dem_entry *h, double *bv)
 {
     *h = (dem_entry){0};
     *bv = 0;
-    if (!ostart)
+    if (!ostart || oi >= on || oj >= on)   /* no list, or a particle added since */
         return;
     for (size_t k = ostart[oi]; k < ostart[oi + 1]; k++)
         if ((size_t)oe[k].j == oj) {
@@ -192,6 +192,7 @@ typedef struct build_ctx {
     const cell_grid *g;
     double extra;             /* skin + bridge range */
     const size_t *ostart, *old_of;
+    size_t on;                /* particles of the old list (those added since have no history) */
     const dem_entry *oe;
     const double *obv;
 } build_ctx;
@@ -236,8 +237,8 @@ static size_t visit(const build_ctx *b, size_t i, dem_entry *out, double *bv)
             if (!pair_listed(b, i, j))
                 continue;
             if (out) {
-                old_history(b->ostart, b->oe, b->obv, b->old_of[i], b->old_of[j], &out[found],
-                            &bv[found]);
+                old_history(b->ostart, b->on, b->oe, b->obv, b->old_of[i], b->old_of[j],
+                            &out[found], &bv[found]);
                 out[found].j = (int32_t)j;
             }
             found++;
@@ -282,8 +283,9 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
     if (!rc)
         rc = sort_by_cell(s, &g, old_of, err);
     if (!rc) {
-        /* the old list (in old indices) stays until the history has moved over */
-        build_ctx b = {s, &g, extra, nl->n == n ? nl->start : NULL, old_of, nl->e, nl->bv};
+        /* the old list (in old indices) stays until the history has moved over;
+         * particles appended since it was built (indices >= nl->n) have none */
+        build_ctx b = {s, &g, extra, nl->n <= n ? nl->start : NULL, old_of, nl->n, nl->e, nl->bv};
         start[0] = 0;
 #pragma omp parallel for schedule(dynamic, 256)
         for (size_t i = 0; i < n; i++)
@@ -362,10 +364,18 @@ int dem_neighbours_transpose(dem_nlist *nl, mimas_error *err)
     nl->eft = eft;
     return MIMAS_OK;
 }
+/* A build decided on here first lets the scenario add and remove particles. */
+static int rebuild(dem_system *s, mimas_error *err)
+{
+    if (s->hooks.edit && s->hooks.edit(s->hooks.ctx, s, err))
+        return -1;
+    return dem_neighbours_build(s, err) ? -1 : 1;
+}
+
 int dem_neighbours_update(dem_system *s, mimas_error *err)
 {
     if (s->nl.n != s->n || !s->nl.start)
-        return dem_neighbours_build(s, err) ? -1 : 1;
+        return rebuild(s, err);
     double limit = 0.25 * s->skin * s->skin, worst = 0;
 #pragma omp parallel for reduction(max : worst)
     for (size_t k = 0; k < s->n; k++) {
@@ -379,5 +389,5 @@ int dem_neighbours_update(dem_system *s, mimas_error *err)
     }
     if (worst <= limit)
         return 0;
-    return dem_neighbours_build(s, err) ? -1 : 1;
+    return rebuild(s, err);
 }

@@ -14,7 +14,7 @@
 enum { K_REAL, K_INT, K_BOOL, K_CHOICE };
 /* which scenario types a key applies to */
 enum { S_RING = 1 << SIM_RINGSHEAR, S_BOX = 1 << SIM_BOX, S_PULL = 1 << SIM_PULLOFF,
-       S_ALL = S_RING | S_BOX | S_PULL };
+       S_TUBE = 1 << SIM_PLUGTUBE, S_ALL = S_RING | S_BOX | S_PULL | S_TUBE };
 /* range flags */
 enum { R_MIN_OPEN = 1, R_NO_MAX = 2 };
 
@@ -34,18 +34,23 @@ typedef struct key_desc {
 #define BIG 0, R_NO_MAX
 
 static const key_desc keys[] = {
-    {"scenario", "type", K_CHOICE, SC(type), 0, 0, 0, "ringshear|box|pulloff", "",
-     "the scenario: split-bottom ring shear cell, periodic box, liquid-bridge pull-off", S_ALL},
+    {"scenario", "type", K_CHOICE, SC(type), 0, 0, 0, "ringshear|box|pulloff|plugtube", "",
+     "the scenario: split-bottom ring shear cell, periodic box, liquid-bridge pull-off, "
+     "plug conveying in a tube", S_ALL},
     {"scenario", "seed", K_INT, SC(seed), 0, 2147483647.0, 0, NULL, "",
      "seed of the random numbers (sizes, insertion, velocities)", S_ALL},
-    {"run", "dt", K_REAL, SC(dt), 0, BIG | R_MIN_OPEN, NULL, "s", "time step", S_ALL},
+    {"run", "dt", K_REAL, SC(dt), 0, BIG, NULL, "s",
+     "time step (0: t_c/50 of the stiffest linear pair)", S_ALL},
     {"run", "dt_guard", K_BOOL, SC(dt_guard), 0, 1, 0, NULL, "",
      "refuse dt > t_c/50 of the stiffest linear pair (docs/theory.md §3)", S_ALL},
     {"run", "skin", K_REAL, SC(skin), 0, BIG | R_MIN_OPEN, NULL, "m",
      "Verlet-list skin; lists are rebuilt when a particle moved more than skin/2", S_ALL},
-    {"run", "gravity_x", K_REAL, SC(gravity[0]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, x", S_ALL},
-    {"run", "gravity_y", K_REAL, SC(gravity[1]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, y", S_ALL},
-    {"run", "gravity_z", K_REAL, SC(gravity[2]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, z", S_ALL},
+    {"run", "gravity_x", K_REAL, SC(gravity[0]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, x",
+     S_RING | S_BOX | S_PULL},
+    {"run", "gravity_y", K_REAL, SC(gravity[1]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, y",
+     S_RING | S_BOX | S_PULL},
+    {"run", "gravity_z", K_REAL, SC(gravity[2]), -1e6, 1e6, 0, NULL, "m s-2", "gravity, z",
+     S_RING | S_BOX | S_PULL},
     {"run", "output_every", K_INT, SC(output_every), 1, 1e15, 0, NULL, "steps",
      "write a frame (particles, contacts, wall contacts) every this many steps", S_ALL},
     {"run", "checkpoint_every", K_INT, SC(checkpoint_every), 0, 1e15, 0, NULL, "steps",
@@ -78,8 +83,8 @@ static const key_desc keys[] = {
     {"contact", "restitution", K_REAL, CP(restitution), 0, 1, 0, NULL, "",
      "coefficient of restitution e; 0: use damping_normal (linear); Hertz needs e > 0", S_ALL},
     {"contact", "normal_clip", K_BOOL, CP(normal_clip), 0, 1, 0, NULL, "",
-     "never attractive: max(0, k delta - gamma v_n) (docs/theory.md §2.1); e then holds at the "
-     "end of the repulsion (Strauß 2005, eq. 3.13-3.14)", S_ALL},
+     "the normal force is never attractive: max(0, k delta - gamma v_n) (docs/theory.md "
+     "§2.1); with it, e is reached at the end of the repulsion (Strauß 2005, eq. 3.13-3.14)", S_ALL},
     {"contact", "youngs_modulus", K_REAL, CP(youngs_modulus), 0, BIG, NULL, "Pa",
      "E (Hertz, JKR)", S_ALL},
     {"contact", "poisson", K_REAL, CP(poisson), 0, 0.5, 0, NULL, "", "Poisson ratio nu", S_ALL},
@@ -92,6 +97,9 @@ static const key_desc keys[] = {
      "surface tension of the liquid bridges", S_ALL},
     {"contact", "contact_angle", K_REAL, CP(contact_angle), 0, 90, 0, NULL, "deg",
      "contact angle theta of the liquid bridges", S_ALL},
+    {"contact", "resting_overlap", K_REAL, CP(resting_overlap), 0, 0.5, 0, NULL, "",
+     "> 0: stiffness_normal = m g/(resting_overlap d): a particle resting on a wall overlaps "
+     "this fraction of d (linear; m, d of the particles)", S_ALL},
     {"ringshear", "r_in", K_REAL, SC(r_in), 0, BIG | R_MIN_OPEN, NULL, "m",
      "radius of the inner (static) cylinder", S_RING},
     {"ringshear", "r_split", K_REAL, SC(r_split), 0, BIG | R_MIN_OPEN, NULL, "m",
@@ -127,14 +135,66 @@ static const key_desc keys[] = {
      "separation speed of the two particles", S_PULL},
     {"pulloff", "distance", K_REAL, SC(pull_distance), 0, BIG | R_MIN_OPEN, NULL, "",
      "final gap in units of the particle radius", S_PULL},
+    {"plugtube", "orientation", K_CHOICE, SC(tube_orientation), 0, 0, 0, "vertical|horizontal",
+     "", "the tube runs along z; vertical: gravity along -z (against the flow), horizontal: "
+     "along -x", S_TUBE},
+    {"plugtube", "gravity", K_REAL, SC(tube_gravity), 0, 1e6, 0, NULL, "m s-2",
+     "magnitude of gravity", S_TUBE},
+    {"plugtube", "diameter", K_REAL, SC(tube_diameter), 0, BIG | R_MIN_OPEN, NULL, "m",
+     "inner diameter D_t of the tube", S_TUBE},
+    {"plugtube", "length", K_REAL, SC(tube_length), 0, BIG | R_MIN_OPEN, NULL, "m",
+     "length L_t of the tube (inlet z = 0, outlet z = L_t; grains are removed beyond it)",
+     S_TUBE},
+    {"plugtube", "mass_flow", K_REAL, SC(mass_flow), 0, BIG, NULL, "kg s-1",
+     "grain mass flow of the feed: the packed feed column is pushed in at the speed that "
+     "gives it (0: use feed_speed)", S_TUBE},
+    {"plugtube", "feed_speed", K_REAL, SC(feed_speed), 0, BIG, NULL, "m s-1",
+     "speed of the feed column (used when mass_flow = 0; both 0: no feed)", S_TUBE},
+    {"plugtube", "feed_porosity", K_REAL, SC(feed_porosity), 0.26, 0.95, 0, NULL, "",
+     "porosity of the packed feed column", S_TUBE},
+    {"plugtube", "fill_count", K_INT, SC(fill_count), 0, 1e9, 0, NULL, "",
+     "particles placed in the tube at the start, from the outlet end on (e.g. a settling "
+     "sphere)", S_TUBE},
+    {"plugtube", "time", K_REAL, SC(tube_time), 0, BIG, NULL, "s", "simulated time", S_TUBE},
+    {"gas", "model", K_CHOICE, SC(gas_model), 0, 0, 0, "pressure|fluid-at-rest|none", "",
+     "the gas: the gas-pressure model of plug conveying, a fluid at rest (drag laws, "
+     "buoyancy), or none", S_TUBE},
+    {"gas", "superficial_velocity", K_REAL, SC(gas_velocity), 0, BIG, NULL, "m s-1",
+     "superficial gas velocity v_s fed at the inlet and taken out at the outlet (pressure)",
+     S_TUBE},
+    {"gas", "pressure", K_REAL, SC(gas_pressure), 0, BIG | R_MIN_OPEN, NULL, "Pa",
+     "ambient pressure P0 (pressure)", S_TUBE},
+    {"gas", "viscosity", K_REAL, SC(gas_viscosity), 0, BIG | R_MIN_OPEN, NULL, "Pa s",
+     "dynamic viscosity eta0 of the gas or fluid", S_TUBE},
+    {"gas", "reynolds", K_REAL, SC(gas_reynolds), 0, 1e6, 0, NULL, "",
+     "particle Reynolds number of the effective viscosity eta = eta0 (1 + 0.1935 Re^0.6305) "
+     "(pressure; 0: eta = eta0)", S_TUBE},
+    {"gas", "cells_across", K_INT, SC(gas_cells_across), 1, 64, 0, NULL, "",
+     "gas cells across the tube, in x and in y (pressure)", S_TUBE},
+    {"gas", "cell_length", K_REAL, SC(gas_cell_length), 0, BIG | R_MIN_OPEN, NULL, "m",
+     "length of the gas cells along the tube (rounded to fit the tube; pressure)", S_TUBE},
+    {"gas", "theta", K_REAL, SC(gas_theta), 0.5, 1, 0, NULL, "",
+     "time weighting of the diffusion steps: 0.5 Crank-Nicolson, 1 implicit Euler "
+     "(pressure; docs/simulate.md)", S_TUBE},
+    {"gas", "every", K_INT, SC(gas_every), 1, 1e6, 0, NULL, "steps",
+     "advance the gas every this many steps (pressure; docs/simulate.md)", S_TUBE},
+    {"gas", "fluid_density", K_REAL, SC(fluid_density), 0, BIG, NULL, "kg m-3",
+     "density rho_f of the fluid at rest (fluid-at-rest)", S_TUBE},
+    {"gas", "drag_law", K_CHOICE, SC(drag_law), 0, 0, 0,
+     "stokes|schiller-naumann|haider-levenspiel", "", "drag coefficient (fluid-at-rest)",
+     S_TUBE},
+    {"gas", "wall_factor", K_CHOICE, SC(wall_factor), 0, 0, 0, "none|francis|ataide", "",
+     "correction of the drag for the tube wall (fluid-at-rest)", S_TUBE},
+    {"gas", "buoyancy", K_BOOL, SC(buoyancy), 0, 1, 0, NULL, "",
+     "buoyancy -rho_f V g (fluid-at-rest)", S_TUBE},
 };
 #define NKEYS (sizeof keys / sizeof keys[0])
 
-static const char *const type_names[] = {"ringshear", "box", "pulloff"};
+static const char *const type_names[] = {"ringshear", "box", "pulloff", "plugtube"};
 
 int sim_scenario_type(const char *name)
 {
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < SIM_SCENARIO_TYPES; k++)
         if (strcmp(name, type_names[k]) == 0)
             return k;
     return -1;
@@ -172,7 +232,7 @@ void sim_scenario_defaults(sim_scenario *s, int type)
     for (int a = 0; a < SIM_MAX_TYPES; a++)
         for (int b = 0; b < SIM_MAX_TYPES; b++)
             s->contact[a][b] = s->contact_all;
-    /* the split-bottom cell of Uhlig (2012, Sec. 4.2) */
+    /* the split-bottom cell of Uhlig (2012) */
     s->r_in = 0.0147;
     s->r_split = 0.085;
     s->r_out = 0.11;
@@ -190,6 +250,47 @@ void sim_scenario_defaults(sim_scenario *s, int type)
     s->box_time = 0.1;
     s->pull_speed = 1e-3;
     s->pull_distance = 0.5;
+    /* plug conveying: the standard set of Strauss (2005, App. A) */
+    s->tube_orientation = SIM_TUBE_VERTICAL;
+    s->tube_gravity = 9.81;
+    s->tube_diameter = 0.007;
+    s->tube_length = 0.525;
+    s->tube_time = 20;
+    s->mass_flow = 6.9167e-4;     /* 2.49 kg/h */
+    s->feed_speed = 0;
+    s->feed_porosity = 0.506;
+    s->gas_model = SIM_GAS_PRESSURE;
+    s->gas_velocity = 1;
+    s->gas_pressure = 101325;
+    s->gas_viscosity = 1.82e-5;   /* air; Re = 65 gives the effective 0.0672 cP */
+    s->gas_reynolds = 65;
+    s->gas_cells_across = 2;
+    s->gas_cell_length = 0.0035;
+    s->gas_every = 1;
+    s->gas_theta = 1;
+    s->fluid_density = 1.2;
+    s->drag_law = 1;              /* schiller-naumann */
+    s->wall_factor = 0;
+    s->buoyancy = 1;
+    if (type == SIM_PLUGTUBE) {
+        s->dt = 0;                /* t_c/50 */
+        s->diameter = 0.0014;
+        s->density = 937;
+        s->skin = 0.3 * 0.0014;
+        s->output_every = 2000;
+        sim_contact_params *c = &s->contact_all;
+        c->friction = 0.5;
+        c->restitution = 0.5;
+        c->normal_clip = 1;
+        c->resting_overlap = 0.001;
+        /* Coulomb sliding regularised by viscous friction below the limit
+         * (Strauss 2005, eq. 3.22): no tangential spring */
+        c->k_t = 0;
+        c->gamma_t = 1e-3;
+        for (int a = 0; a < SIM_MAX_TYPES; a++)
+            for (int b = 0; b < SIM_MAX_TYPES; b++)
+                s->contact[a][b] = s->contact_all;
+    }
 }
 
 /* ---- parsing ------------------------------------------------------------- */
@@ -321,8 +422,8 @@ static int handler(void *user, const char *section, const char *name, const char
         if (strcmp(section, "scenario") == 0 && strcmp(name, "type") == 0) {
             int t = sim_scenario_type(value);
             if (t < 0)
-                return fail(c, "[scenario] type must be ringshear, box or pulloff, not '%s'",
-                            value);
+                return fail(c, "[scenario] type must be ringshear, box, pulloff or plugtube, "
+                               "not '%s'", value);
             c->found_type = t;
         }
         return 1;
@@ -461,6 +562,18 @@ int sim_scenario_check(const sim_scenario *s, const char *name, mimas_error *err
             return mimas_error_set(err, MIMAS_EDATA, "%s: [ringshear] the gap r_out - r_in is "
                                    "narrower than three particle diameters", name);
     }
+    if (s->type == SIM_PLUGTUBE) {
+        double d = s->diameter * s->coarse_grain;
+        if (s->mass_flow > 0 && s->feed_speed > 0)
+            return mimas_error_set(err, MIMAS_EDATA, "%s: [plugtube] set either mass_flow or "
+                                   "feed_speed (the other 0)", name);
+        if (s->tube_diameter < 2.5 * d)
+            return mimas_error_set(err, MIMAS_EDATA, "%s: [plugtube] the tube diameter must be "
+                                   "at least 2.5 particle diameters", name);
+        if (s->tube_length < 10 * d)
+            return mimas_error_set(err, MIMAS_EDATA, "%s: [plugtube] the tube must be at least "
+                                   "10 particle diameters long", name);
+    }
     for (int a = 0; a < SIM_MAX_TYPES; a++)
         for (int b = a; b < SIM_MAX_TYPES; b++) {
             const sim_contact_params *c = &s->contact[a][b];
@@ -469,8 +582,8 @@ int sim_scenario_check(const sim_scenario *s, const char *name, mimas_error *err
                 what = "model = hertz needs youngs_modulus > 0";
             else if (c->model == SIM_HERTZ && !(c->restitution > 0))
                 what = "model = hertz needs restitution > 0";
-            else if (c->model == SIM_LINEAR && !(c->k_n > 0))
-                what = "model = linear needs stiffness_normal > 0";
+            else if (c->model == SIM_LINEAR && !(c->k_n > 0) && !(c->resting_overlap > 0))
+                what = "model = linear needs stiffness_normal > 0 (or resting_overlap > 0)";
             else if (c->model == SIM_LINEAR && c->restitution > 0 && c->normal_clip &&
                      c->restitution <= exp(-2))
                 what = "with normal_clip = yes no damping gives a restitution below exp(-2) = "
@@ -546,7 +659,7 @@ void sim_scenario_print_doc(FILE *out)
         const key_desc *k = &keys[m];
         fprintf(out, "| %s | %s | %s | ", k->section, k->name, k->unit);
         const char *sep = "";
-        for (int t = 0; t < 3; t++)
+        for (int t = 0; t < SIM_SCENARIO_TYPES; t++)
             if (k->scenarios & (1 << t)) {
                 fprintf(out, "%s%s", sep, type_names[t]);
                 sep = ", ";

@@ -11,7 +11,11 @@
 #include "error.h"
 #include "parameters.h"
 
-enum { SIM_RINGSHEAR = 0, SIM_BOX = 1, SIM_PULLOFF = 2 };
+enum { SIM_RINGSHEAR = 0, SIM_BOX = 1, SIM_PULLOFF = 2, SIM_PLUGTUBE = 3 };
+#define SIM_SCENARIO_TYPES 4
+/* plugtube: the tube's orientation and the fluid model ([gas] model) */
+enum { SIM_TUBE_VERTICAL = 0, SIM_TUBE_HORIZONTAL = 1 };
+enum { SIM_GAS_PRESSURE = 0, SIM_GAS_FLUID_AT_REST = 1, SIM_GAS_NONE = 2 };
 enum { SIM_LINEAR = 0, SIM_HERTZ = 1 };
 
 /* Material types: 0 stands for the walls, 1.. for particle types. */
@@ -30,6 +34,8 @@ typedef struct sim_contact_params {
     double cohesion_energy;    /* JKR work of adhesion w (twice the surface energy), J/m^2 */
     double surface_tension;    /* liquid bridges, N/m */
     double contact_angle;      /* degrees */
+    double resting_overlap;    /* > 0: k_n such that a particle resting on a wall overlaps
+                                  this fraction of its diameter (linear) */
 } sim_contact_params;
 
 typedef struct sim_scenario {
@@ -55,6 +61,17 @@ typedef struct sim_scenario {
     long box_count;
     /* [pulloff] */
     double pull_speed, pull_distance;
+    /* [plugtube] */
+    int tube_orientation;      /* SIM_TUBE_* */
+    double tube_gravity, tube_diameter, tube_length, tube_time;
+    double mass_flow, feed_speed, feed_porosity;
+    long fill_count;
+    /* [gas] */
+    int gas_model;             /* SIM_GAS_* */
+    double gas_velocity, gas_pressure, gas_viscosity, gas_reynolds, gas_cell_length, gas_theta;
+    long gas_cells_across, gas_every;
+    double fluid_density;
+    int drag_law, wall_factor, buoyancy;
 } sim_scenario;
 
 /* Defaults of the scenario type (SIM_*). */

@@ -1,4 +1,5 @@
-/* The simulation state as a mimas frame (particles, contacts, wall contacts). */
+/* The simulation state as a mimas frame (particles, contacts, wall contacts;
+ * the tube and gas fields of a plugtube run). */
 #include <config.h>
 
 #include <math.h>
@@ -74,7 +75,7 @@ static int fill_contacts(const dem_system *s, mimas_contacts *c, mimas_error *er
             double delta = s->radius[i] + s->radius[j] - dist;
             for (int q = 0; q < 3; q++) {
                 n[q] = d[q] / dist;
-                /* PHYSICS 2: c = r_i - (R_i - delta/2) n */
+                /* docs/theory.md §2: c = r_i - (R_i - delta/2) n */
                 c->point[row][q] = s->x[i][q] - (s->radius[i] - delta / 2) * n[q];
                 c->force[row][q] = -nl->eft[nl->tpos[k]].f[q];
             }
@@ -131,5 +132,9 @@ int sim_frame_fill(const dem_system *s, const sim_plan *plan, mimas_frame *f, mi
         rc = fill_contacts(s, &f->contacts, err);
     if (!rc)
         rc = fill_walls(s, &f->walls, err);
+    f->tube.present = 0;
+    f->gas.present = 0;
+    if (!rc && plan->tube)
+        rc = sim_tube_frame(plan->tube, f, err);
     return rc;
 }

@@ -124,9 +124,12 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
     mimas_writer_options wo;
     mimas_writer_options_default(&wo);
     wo.provenance = o->provenance;
+    wo.xdmf = 1; /* the sidecar for ParaView, written when the run ends */
+    sim_ck_chunk state[16];
     int rc = sim_setup(&s, sc, &plan, err);
+    size_t nstate = rc ? 0 : sim_plan_state(&plan, state, 16);
     if (!rc && o->resume) {
-        if (!(rc = sim_checkpoint_read(&s, ckpt, err)))
+        if (!(rc = sim_checkpoint_read(&s, state, nstate, ckpt, err)))
             rc = reopen_output(o, s.step, &w, &wo, err);
     } else if (!rc) {
         remove(ckpt);
@@ -153,7 +156,7 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
         if (!rc && ((sc->checkpoint_every == 0 && frame) ||
                     (sc->checkpoint_every > 0 && s.step % sc->checkpoint_every == 0) || stop ||
                     s.step == plan.total_steps))
-            rc = sim_checkpoint_write(&s, ckpt, err);
+            rc = sim_checkpoint_write(&s, state, nstate, ckpt, err);
         if (!rc && o->progress && (s.step % 100 == 0 || s.step == plan.total_steps)) {
             double t = now();
             if (t - last >= 0.5 || s.step == plan.total_steps) {
@@ -174,6 +177,7 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
             rc = rc2;
     }
     mimas_frame_free(&f);
+    sim_plan_free(&plan, &s);
     dem_free(&s);
     return rc;
 }

@@ -60,7 +60,7 @@ static void test_file_reads_back_as_the_average(void **state)
     mimas_error err;
     mimas_fields_file *ff;
     const char *path = scratch_path("ring.h5");
-    assert_int_equal(mimas_fields_open(&ff, path, &err), MIMAS_OK);
+    assert_int_equal(mimas_fields_open(&ff, path, NULL, &err), MIMAS_OK);
     assert_int_equal(mimas_fields_finish(ff, avg, "test", &err), MIMAS_OK);
     mimas_fieldset *file, *mem;
     assert_true(mimas_fieldset_probe(path));
@@ -155,7 +155,7 @@ static void test_other_files_are_refused(void **state)
     mimas_frame_free(&f);
     mimas_fields_file *ff;
     const char *newer = scratch_path("newer.h5");
-    assert_int_equal(mimas_fields_open(&ff, newer, &err), MIMAS_OK);
+    assert_int_equal(mimas_fields_open(&ff, newer, NULL, &err), MIMAS_OK);
     assert_int_equal(mimas_fields_finish(ff, avg, NULL, &err), MIMAS_OK);
     mimas_average_free(avg);
     hid_t file = H5Fopen(newer, H5F_ACC_RDWR, H5P_DEFAULT);

@@ -295,6 +295,124 @@ static void test_unknown_contact_id_is_reported(void **state)
     mimas_native_close(r);
 }
 
+/* format 1.1: the tube and the gas fields travel with every frame */
+static void fill_gas(mimas_frame *f, size_t k)
+{
+    f->tube = (mimas_tube){1, {0.1, -0.2, 0.3}, {0.6, 0, 0.8}, 0.0035, 0.525};
+    assert_int_equal(mimas_gas_resize(&f->gas, 2, 3, 5, NULL), MIMAS_OK);
+    f->gas.origin[0] = -0.0035;
+    f->gas.origin[1] = -0.00525;
+    f->gas.origin[2] = 0;
+    f->gas.spacing[0] = 0.0035;
+    f->gas.spacing[1] = 0.0035;
+    f->gas.spacing[2] = 0.105;
+    for (size_t c = 0; c < 30; c++) {
+        f->gas.pressure[c] = 1000.0 * (double)k + (double)c + 0.125;
+        f->gas.porosity[c] = 0.4 + 0.01 * (double)c;
+        for (int d = 0; d < 3; d++)
+            f->gas.velocity[c][d] = (double)(c * 3 + (size_t)d) - 0.5 * (double)k;
+    }
+}
+
+static void test_tube_gas_round_trip(void **state)
+{
+    (void)state;
+    const char *path = scratch_path("gas.h5");
+    mimas_writer *w;
+    mimas_error err;
+    assert_int_equal(mimas_writer_open(&w, path, NULL, &err), MIMAS_OK);
+    mimas_frame f, g;
+    mimas_frame_init(&f);
+    mimas_frame_init(&g);
+    for (size_t k = 0; k < 3; k++) {
+        make_frame(&f, 11, k, 0);
+        fill_gas(&f, k);
+        if (mimas_writer_append(w, &f, &err))
+            fail_msg("%s", err.msg);
+    }
+    assert_int_equal(mimas_writer_close(w, &err), MIMAS_OK);
+    mimas_native *r;
+    assert_int_equal(mimas_native_open(&r, path, &err), MIMAS_OK);
+    assert_int_equal(mimas_native_frames(r), 3);
+    for (size_t k = 3; k-- > 0;) {
+        fill_gas(&f, k);
+        assert_int_equal(mimas_native_read(r, k, &g, &err), MIMAS_OK);
+        assert_true(g.tube.present);
+        assert_memory_equal(g.tube.origin, f.tube.origin, sizeof f.tube.origin);
+        assert_memory_equal(g.tube.direction, f.tube.direction, sizeof f.tube.direction);
+        assert_true(g.tube.radius == f.tube.radius && g.tube.length == f.tube.length);
+        assert_true(g.gas.present);
+        assert_memory_equal(g.gas.cells, f.gas.cells, sizeof f.gas.cells);
+        assert_memory_equal(g.gas.origin, f.gas.origin, sizeof f.gas.origin);
+        assert_memory_equal(g.gas.spacing, f.gas.spacing, sizeof f.gas.spacing);
+        assert_memory_equal(g.gas.pressure, f.gas.pressure, 30 * sizeof *f.gas.pressure);
+        assert_memory_equal(g.gas.porosity, f.gas.porosity, 30 * sizeof *f.gas.porosity);
+        assert_memory_equal(g.gas.velocity, f.gas.velocity, 30 * sizeof *f.gas.velocity);
+    }
+    mimas_native_close(r);
+    /* the layout the format documents: (frames, nz, ny, nx), x fastest; step
+     * and time shared with the particles */
+    hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t ds = H5Dopen2(file, "/fields/gas/pressure/value", H5P_DEFAULT);
+    hid_t sp = H5Dget_space(ds);
+    hsize_t dims[4];
+    assert_int_equal(H5Sget_simple_extent_ndims(sp), 4);
+    H5Sget_simple_extent_dims(sp, dims, NULL);
+    assert_true(dims[0] == 3 && dims[1] == 5 && dims[2] == 3 && dims[3] == 2);
+    double all[3 * 30];
+    assert_true(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, all) >= 0);
+    /* frame 1, cell (i, j, k) = (1, 2, 4): index i + nx (j + ny k) = 29 */
+    assert_true(all[30 + 29] == 1000.0 + 29 + 0.125);
+    H5Sclose(sp);
+    H5Dclose(ds);
+    H5O_info_t a, b;   /* the same object: hard links */
+    H5Oget_info_by_name(file, "/fields/gas/velocity/time", &a, H5P_DEFAULT);
+    H5Oget_info_by_name(file, "/particles/all/position/time", &b, H5P_DEFAULT);
+    assert_true(a.addr == b.addr && a.fileno == b.fileno);
+    H5Fclose(file);
+    /* a frame with another grid is refused */
+    assert_int_equal(mimas_writer_open(&w, scratch_path("gas2.h5"), NULL, &err), MIMAS_OK);
+    make_frame(&f, 11, 0, 0);
+    fill_gas(&f, 0);
+    assert_int_equal(mimas_writer_append(w, &f, &err), MIMAS_OK);
+    assert_int_equal(mimas_gas_resize(&f.gas, 2, 3, 6, NULL), MIMAS_OK);
+    assert_int_equal(mimas_writer_append(w, &f, &err), MIMAS_EDATA);
+    assert_non_null(strstr(err.msg, "gas grid changes"));
+    f.gas.present = 0;
+    f.tube.length = 1;
+    assert_int_equal(mimas_writer_append(w, &f, &err), MIMAS_EDATA);
+    assert_non_null(strstr(err.msg, "tube changes"));
+    mimas_writer_abort(w);
+    mimas_frame_free(&f);
+    mimas_frame_free(&g);
+}
+
+/* A file of format 1.0 (tests/data/native/v1_0.h5, written by mimas 0.1.0
+ * before the tube and gas fields existed) reads, without tube or gas. */
+static void test_format_1_0_reads(void **state)
+{
+    (void)state;
+    char path[512];
+    const char *top = getenv("TEST_SRCDIR");
+    snprintf(path, sizeof path, "%s/data/native/v1_0.h5", top ? top : "tests");
+    mimas_native *r;
+    mimas_error err;
+    if (mimas_native_open(&r, path, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(mimas_native_frames(r), 3);
+    mimas_frame f;
+    mimas_frame_init(&f);
+    f.tube.present = 1;
+    f.gas.present = 1;
+    assert_int_equal(mimas_native_read(r, 2, &f, &err), MIMAS_OK);
+    assert_int_equal(f.particles.n, 8);
+    assert_true(f.step == 200);
+    assert_false(f.tube.present);
+    assert_false(f.gas.present);
+    mimas_frame_free(&f);
+    mimas_native_close(r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -305,6 +423,8 @@ int main(void)
         cmocka_unit_test(test_bad_files),
         cmocka_unit_test(test_writer_rejects_inconsistent_frames),
         cmocka_unit_test(test_unknown_contact_id_is_reported),
+        cmocka_unit_test(test_tube_gas_round_trip),
+        cmocka_unit_test(test_format_1_0_reads),
     };
     return cmocka_run_group_tests_name("native", tests, scratch_setup, scratch_teardown);
 }

@@ -251,7 +251,7 @@ static void test_reader_merges_inputs(void **state)
     while (mimas_reader_next(r, &f, &err) == MIMAS_OK)
         assert_int_equal(mimas_average_add(avg, &f, &err), MIMAS_OK);
     mimas_fields_file *ff;
-    assert_int_equal(mimas_fields_open(&ff, scratch_path("fields.h5"), &err), MIMAS_OK);
+    assert_int_equal(mimas_fields_open(&ff, scratch_path("fields.h5"), NULL, &err), MIMAS_OK);
     assert_int_equal(mimas_fields_parameters(ff, "scenario", ps, &err), MIMAS_OK);
     assert_int_equal(mimas_fields_finish(ff, avg, NULL, &err), MIMAS_OK);
     mimas_average_free(avg);

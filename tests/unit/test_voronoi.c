@@ -150,11 +150,11 @@ static void test_identity_hopper_walls(void **state)
 
 /* --velocity-width W: the kinetic part becomes sum m (v - V)(x)(v - V) with V
  * Shepard's mean sum_j v_j g_j / sum_j g_j, g the Gaussian of width W
- * shifted to 0 at 3 W (weight.h); V computed here over all pairs. */
+ * cut at 3 W (weight.h); V computed here over all pairs. */
 static void test_shepard_mean_velocity(void **state)
 {
     (void)state;
-    const double w = 0.003, R = 3 * w, shift = exp(-4.5);
+    const double w = 0.003, R = 3 * w, shift = 0.0; /* the plain cut */
     mimas_frame f;
     load("triclinic/dump.triclinic_complete.atom", "triclinic/dump.triclinic_complete.pgl", NULL,
          &f);
@@ -327,8 +327,10 @@ static void test_voronoi_weight(void **state)
     }
     mimas_average_free(a);
     /* voronoi:w=W: the same ratios with the Gaussian g of each particle at the
-     * cell centre (shifted to 0 at 3 W; one image within reach) */
-    const double w = 0.002, shift = exp(-4.5);
+     * cell centre (cut at 3 W; one image within reach), integrated over y, which
+     * the grid does not resolve: int e^{-(rho^2 + y^2)/2W^2} dy over the cut sphere
+     * = sqrt(2 pi) W e^{-rho^2/2W^2} erf(sqrt(9 W^2 - rho^2) / (sqrt 2 W)) */
+    const double w = 0.002;
     assert_int_equal(mimas_weight_parse(&o.weight, "voronoi:w=0.002", &err), 0);
     assert_int_equal(mimas_average_create(&a, &o, &err), 0);
     assert_int_equal(mimas_average_add(a, &f, &err), 0);
@@ -336,14 +338,13 @@ static void test_voronoi_weight(void **state)
     for (size_t c = 0; c < cells; c++) {
         double ctr[3], vp = 0, vc = 0, tr = 0;
         mimas_grid_cell_centre(mimas_average_grid(a), c, ctr);
-        ctr[1] = 0.5 * (b->lo[1] + b->hi[1]);
         for (size_t k = 0; k < p->n; k++) {
-            double d[3] = {ctr[0] - p->pos[k][0], ctr[1] - p->pos[k][1], ctr[2] - p->pos[k][2]};
+            double d[3] = {ctr[0] - p->pos[k][0], 0.0, ctr[2] - p->pos[k][2]};
             min_image_frac(b, d);
-            double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            double r2 = d[0] * d[0] + d[2] * d[2];
             if (r2 >= 9 * w * w)
                 continue;
-            double g = exp(-r2 / (2 * w * w)) - shift;
+            double g = exp(-r2 / (2 * w * w)) * erf(sqrt(9 * w * w - r2) / (M_SQRT2 * w));
             const double *s = &val.stress[9 * k];
             vp += g * 4.0 / 3.0 * M_PI * pow(p->radius[k], 3);
             vc += g * val.volume[k];

@@ -1,5 +1,7 @@
-/* Coarse-graining kernels: normalisation, gradients and line integrals
- * against independent numerical integration. */
+/* Coarse-graining kernels: normalisation, gradients, line integrals,
+ * marginals and azimuthal averages against independent numerical
+ * integration (GSL's adaptive quadrature of the 3-D kernel written out
+ * here, not the library's). */
 #include <config.h>
 
 #include <setjmp.h>
@@ -15,28 +17,123 @@
 #include "assert_close.h"
 #include "weight.h"
 
-static double radial(double r, void *p)
+/* ---- the 3-D kernels, written out independently ---- */
+
+static double C_W, C_CUT, C_COEF, C_SHIFT;
+static int C_LUCY;
+
+/* Sets the reference kernel: the Gaussian e^{-r^2/2w^2} (minus its value at the cutoff
+ * when shifted), normalised here by GSL quadrature of 4 pi r^2 phi, or Lucy's. */
+static double ref_raw(double r)
 {
-    const mimas_weight *wt = p;
-    double d[3] = {r, 0, 0}, g[3];
-    return 4 * M_PI * r * r * mimas_kernel_phi_grad(wt, d, g);
+    if (C_LUCY) {
+        double q = r / C_W;
+        return q < 1 ? (1 + 3 * q) * pow(1 - q, 3) : 0.0;
+    }
+    return r < C_CUT * C_W ? exp(-r * r / (2 * C_W * C_W)) - C_SHIFT : 0.0;
 }
 
-static void check_kernel(const char *spec)
+static double shell(double r, void *p)
+{
+    (void)p;
+    return 4 * M_PI * r * r * ref_raw(r);
+}
+
+static double integrate(gsl_function *F, double a, double b)
+{
+    gsl_integration_workspace *ws = gsl_integration_workspace_alloc(1000);
+    double v, e;
+    gsl_integration_qag(F, a, b, 1e-15, 1e-13, 1000, 6, ws, &v, &e);
+    gsl_integration_workspace_free(ws);
+    return v;
+}
+
+static void ref_set(const mimas_weight *wt)
+{
+    C_W = wt->w;
+    C_LUCY = wt->kind == MIMAS_WEIGHT_LUCY;
+    C_CUT = C_LUCY ? 1.0 : wt->cutoff;
+    C_SHIFT = (!C_LUCY && wt->shifted) ? exp(-0.5 * C_CUT * C_CUT) : 0.0;
+    C_COEF = 1.0;
+    gsl_function F = {shell, NULL};
+    C_COEF = 1.0 / integrate(&F, 0, C_CUT * C_W);
+}
+
+static double ref_phi(double r)
+{
+    return C_COEF * ref_raw(r);
+}
+
+static double R_REACH(void)
+{
+    return C_CUT * C_W;
+}
+
+static mimas_weight parse(const char *spec)
 {
     mimas_weight wt;
     mimas_error err;
     assert_int_equal(mimas_weight_parse(&wt, spec, &err), MIMAS_OK);
-    /* integral over space = 1 (GSL adaptive quadrature of 4 pi r^2 phi) */
-    gsl_integration_workspace *ws = gsl_integration_workspace_alloc(200);
-    gsl_function F = {radial, &wt};
-    double total, abserr;
-    gsl_integration_qag(&F, 0, mimas_weight_reach(&wt), 1e-15, 1e-13, 200, 6, ws, &total,
-                        &abserr);
-    gsl_integration_workspace_free(ws);
-    assert_close(total, 1.0, 1e-12);
-    /* gradient = central differences of phi */
-    double d[3] = {0.31 * wt.w, -0.22 * wt.w, 0.5 * wt.w}, g[3], gp[3], h = 1e-6 * wt.w;
+    ref_set(&wt);
+    return wt;
+}
+
+/* ---- the 3-D kernel and its line integral ---- */
+
+typedef struct line_ctx {
+    double d[3], b[3];
+} line_ctx;
+
+static double along(double s, void *p)
+{
+    line_ctx *c = p;
+    double r2 = 0;
+    for (int k = 0; k < 3; k++)
+        r2 += (c->d[k] - s * c->b[k]) * (c->d[k] - s * c->b[k]);
+    return ref_phi(sqrt(r2));
+}
+
+/* int_0^1 of f(s) with breakpoints where |d - s b| = R (the test's own quadratic) */
+static double integrate_segment(double (*f)(double, void *), void *ctx, const double *d,
+                                const double *b, int n)
+{
+    double a = 0, c = 0, e = 0, R = R_REACH();
+    for (int k = 0; k < n; k++) {
+        a += b[k] * b[k];
+        c += d[k] * b[k];
+        e += d[k] * d[k];
+    }
+    double pts[4] = {0, 0, 0, 1};
+    int np = 1;
+    double disc = c * c - a * (e - R * R);
+    if (disc > 0) {
+        double s1 = (c - sqrt(disc)) / a, s2 = (c + sqrt(disc)) / a;
+        if (s1 > 0 && s1 < 1)
+            pts[np++] = s1;
+        if (s2 > 0 && s2 < 1)
+            pts[np++] = s2;
+    }
+    pts[np++] = 1;
+    gsl_function F = {f, ctx};
+    double total = 0;
+    for (int k = 0; k + 1 < np; k++)
+        total += integrate(&F, pts[k], pts[k + 1]);
+    return total;
+}
+
+static void check_kernel(const char *spec)
+{
+    mimas_weight wt = parse(spec);
+    double w = wt.w;
+    /* the library's kernel is the one written out here, normalised to 1 */
+    const double rs[4] = {0.0, 0.37, 1.1, 2.6};
+    for (int k = 0; k < 4; k++) {
+        double d[3] = {rs[k] * C_W * 0.6, rs[k] * C_W * 0.8, 0}, g[3];
+        assert_close(mimas_kernel_phi_grad(&wt, d, g), ref_phi(rs[k] * C_W),
+                     1e-13 * ref_phi(0));
+    }
+    /* gradient = central differences of phi (inside the support) */
+    double d[3] = {0.31 * w, -0.22 * w, 0.5 * w}, g[3], gp[3], h = 1e-6 * w;
     mimas_kernel_phi_grad(&wt, d, g);
     for (int k = 0; k < 3; k++) {
         double dp[3] = {d[0], d[1], d[2]}, dm[3] = {d[0], d[1], d[2]};
@@ -44,31 +141,25 @@ static void check_kernel(const char *spec)
         dm[k] -= h;
         double fd = (mimas_kernel_phi_grad(&wt, dp, gp) - mimas_kernel_phi_grad(&wt, dm, gp)) /
                     (2 * h);
-        assert_close(g[k], fd, 1e-6 * fabs(fd) + 1e-9 * wt.coef / wt.w);
+        assert_close(g[k], fd, 1e-6 * fabs(fd) + 1e-9 * wt.coef / w);
     }
-    /* line integral = a fine midpoint sum along the segment, for segments
-     * crossing the support, ending inside it, and passing through the point */
-    const double segs[3][6] = {{-2, 0.3, 0.1, 2.5, -0.2, 0.4},
+    /* line integral = adaptive quadrature along the segment, for segments crossing
+     * the support, ending inside it, passing through the point, and short ones */
+    const double segs[5][6] = {{-2, 0.3, 0.1, 2.5, -0.2, 0.4},
                                {0.1, 0.2, 0.3, 0.9, 0.1, -0.4},
-                               {-0.5, 0, 0, 0.5, 0, 0}};
-    for (int s = 0; s < 3; s++) {
-        double a[3], b[3], br[3], dj[3];
+                               {-0.5, 0, 0, 0.5, 0, 0},
+                               {2.2, 1.1, 0.4, 2.25, 1.08, 0.41},
+                               {-1.4, 2.5, 0.2, 1.4, 2.6, -0.1}};
+    for (int s = 0; s < 5; s++) {
+        line_ctx c;
         for (int k = 0; k < 3; k++) {
-            a[k] = segs[s][k] * wt.w;
-            b[k] = segs[s][3 + k] * wt.w;
-            br[k] = b[k] - a[k];
-            dj[k] = -a[k]; /* field point at the origin: d = r - r_j */
+            double a = segs[s][k] * C_W, b = segs[s][3 + k] * C_W;
+            c.b[k] = b - a;
+            c.d[k] = -a; /* field point at the origin: d = r - r_j */
         }
-        double psi = mimas_kernel_line(&wt, dj, br);
-        const int n = 400000;
-        double sum = 0;
-        for (int m = 0; m < n; m++) {
-            double t = (m + 0.5) / n, p[3];
-            for (int k = 0; k < 3; k++)
-                p[k] = dj[k] - t * br[k];
-            sum += mimas_kernel_phi_grad(&wt, p, gp) / n;
-        }
-        assert_close(psi, sum, 1e-8 * fabs(sum) + 1e-14 * wt.coef);
+        double psi = mimas_kernel_line(&wt, c.d, c.b);
+        double ref = integrate_segment(along, &c, c.d, c.b, 3);
+        assert_close(psi, ref, 1e-12 * ref_phi(0));
     }
 }
 
@@ -77,6 +168,8 @@ static void test_gauss(void **state)
     (void)state;
     check_kernel("gauss:w=0.002");
     check_kernel("gauss:w=0.5,cutoff=2");
+    check_kernel("gauss:w=0.002,shift");
+    check_kernel("gauss:w=0.5,cutoff=2.5,shift");
 }
 
 static void test_lucy(void **state)
@@ -85,16 +178,226 @@ static void test_lucy(void **state)
     check_kernel("lucy:c=0.003");
 }
 
+/* The plain cut's jump carries kappa = phi(R) 4/3 pi R^3 of a linear gradient:
+ * int_ball x_b d_a phi dV (inside the support only) = -(1 - kappa) delta_ab,
+ * checked by quadrature of the radial integrand (the shifted kernel: kappa = 0). */
+static double moment(double r, void *p)
+{
+    mimas_weight *wt = p;
+    double d[3] = {r, 0, 0}, g[3];
+    mimas_kernel_phi_grad(wt, d, g);
+    /* int x_a d_a phi over the ball, one component a: int 4 pi r^2 (r/3) dphi/dr dr */
+    return 4 * M_PI * r * r * r / 3.0 * g[0];
+}
+
+static void test_kappa(void **state)
+{
+    (void)state;
+    const char *specs[2] = {"gauss:w=0.002", "gauss:w=0.002,shift"};
+    for (int k = 0; k < 2; k++) {
+        mimas_weight wt = parse(specs[k]);
+        gsl_function F = {moment, &wt};
+        double m = integrate(&F, 0, R_REACH());
+        assert_close(m, -(1.0 - wt.kappa), 1e-12);
+        if (k == 1)
+            assert_close(wt.kappa, 0.0, 0.0);
+        else
+            assert_true(wt.kappa > 0.08 && wt.kappa < 0.083); /* 8.2 % at C = 3 */
+    }
+}
+
+/* ---- marginals ---- */
+
+static double MZ, MRHO;
+
+static double disc_integrand(double rho, void *p)
+{
+    (void)p;
+    return 2 * M_PI * rho * ref_phi(sqrt(MZ * MZ + rho * rho));
+}
+
+static double chord_integrand(double y, void *p)
+{
+    (void)p;
+    return 2 * ref_phi(sqrt(MRHO * MRHO + y * y));
+}
+
+/* the reference marginals: the 3-D kernel integrated by GSL */
+static double ref_marginal(int dims, const double *d)
+{
+    double R = R_REACH();
+    if (dims == 1) {
+        MZ = d[0];
+        if (fabs(MZ) >= R)
+            return 0.0;
+        gsl_function F = {disc_integrand, NULL};
+        return integrate(&F, 0, sqrt(R * R - MZ * MZ));
+    }
+    MRHO = hypot(d[0], d[1]);
+    if (MRHO >= R)
+        return 0.0;
+    gsl_function F = {chord_integrand, NULL};
+    return integrate(&F, 0, sqrt(R * R - MRHO * MRHO));
+}
+
+typedef struct mline_ctx {
+    int dims;
+    double d[2], b[2];
+} mline_ctx;
+
+static double along_marginal(double s, void *p)
+{
+    mline_ctx *c = p;
+    double q[2];
+    for (int k = 0; k < c->dims; k++)
+        q[k] = c->d[k] - s * c->b[k];
+    return ref_marginal(c->dims, q);
+}
+
+static void check_marginals(const char *spec)
+{
+    mimas_weight wt = parse(spec);
+    double w = wt.w, peak = ref_phi(0) * w * w;
+    const double pts[6][2] = {{0, 0}, {0.3, 0.1}, {1.2, -0.7}, {-2.1, 1.5}, {2.95, 0.2},
+                              {0.05, 2.9}};
+    for (int dims = 1; dims <= 2; dims++)
+        for (int k = 0; k < 6; k++) {
+            double d[2] = {pts[k][0] * C_W, pts[k][1] * C_W}, g[2];
+            if (dims == 1 && fabs(d[0]) >= R_REACH())
+                continue;
+            double v = mimas_kernel_marginal(&wt, dims, d, g);
+            assert_close(v, ref_marginal(dims, d), 1e-12 * peak / (dims == 1 ? 1 : w));
+            /* gradient by central differences */
+            for (int m = 0; m < dims; m++) {
+                double h = 1e-6 * C_W, dp[2] = {d[0], d[1]}, dm[2] = {d[0], d[1]}, gg[2];
+                dp[m] += h;
+                dm[m] -= h;
+                double fd = (mimas_kernel_marginal(&wt, dims, dp, gg) -
+                             mimas_kernel_marginal(&wt, dims, dm, gg)) / (2 * h);
+                assert_close(g[m], fd, 1e-5 * fabs(fd) + 1e-8 * peak / (w * w));
+            }
+        }
+    /* the marginals integrate to 1 */
+    for (int dims = 1; dims <= 2; dims++) {
+        /* 1-D: int over z; 2-D: int 2 pi rho drho */
+        double total = 0;
+        const int n = 20000;
+        for (int k = 0; k < n; k++) {
+            double x = (k + 0.5) / n * R_REACH(), d[2] = {x, 0};
+            double v = mimas_kernel_marginal(&wt, dims, d, NULL);
+            total += (dims == 1 ? 2.0 : 2 * M_PI * x) * v * R_REACH() / n;
+        }
+        assert_close(total, 1.0, 2e-6);
+    }
+    /* marginal line integrals = adaptive quadrature of the reference marginal */
+    const double segs[4][4] = {{-2, 0.3, 2.5, -0.2}, {0.1, 0.2, 0.9, 0.1}, {-0.5, 0, 0.5, 0},
+                               {2.2, 1.1, 2.25, 1.08}};
+    for (int dims = 1; dims <= 2; dims++)
+        for (int s = 0; s < 4; s++) {
+            mline_ctx c = {dims, {0, 0}, {0, 0}};
+            for (int k = 0; k < dims; k++) {
+                double a = segs[s][k] * C_W, b = segs[s][2 + k] * C_W;
+                c.b[k] = b - a;
+                c.d[k] = -a;
+            }
+            double psi = mimas_kernel_marginal_line(&wt, dims, c.d, c.b);
+            double ref = integrate_segment(along_marginal, &c, c.d, c.b, dims);
+            /* Lucy: its marginal's rho^4 log rho centre limits the rule (see test_ring) */
+            assert_close(psi, ref, (C_LUCY ? 1e-9 : 1e-11) * peak / (dims == 1 ? 1 : w));
+        }
+}
+
+static void test_marginals(void **state)
+{
+    (void)state;
+    check_marginals("gauss:w=0.002");
+    check_marginals("gauss:w=0.002,shift");
+    check_marginals("gauss:w=0.5,cutoff=2");
+    check_marginals("lucy:c=0.003");
+}
+
+/* ---- azimuthal averages ---- */
+
+static double RR, RHO, RDZ;
+static int RDIMS;
+
+static double ring_integrand(double t, void *p)
+{
+    (void)p;
+    double D2 = RR * RR + RHO * RHO - 2 * RR * RHO * cos(t);
+    if (RDIMS == 3)
+        return ref_phi(sqrt(D2 + RDZ * RDZ));
+    double d[2] = {sqrt(D2), 0};
+    return ref_marginal(2, d);
+}
+
+/* (1/pi) int_0^pi with a breakpoint where D reaches R */
+static double ref_ring(int dims, double r, double rho, double dz)
+{
+    RR = r, RHO = rho, RDZ = dims == 3 ? dz : 0, RDIMS = dims;
+    double R = R_REACH(), base = r * r + rho * rho + RDZ * RDZ;
+    double k = r * rho > 0 ? (base - R * R) / (2 * r * rho) : (base < R * R ? -2 : 2);
+    double tm = k <= -1 ? M_PI : (k >= 1 ? 0 : acos(k));
+    gsl_function F = {ring_integrand, NULL};
+    double v = tm > 0 ? integrate(&F, 0, tm) : 0.0;
+    return v / M_PI;
+}
+
+static void check_ring(const char *spec)
+{
+    mimas_weight wt = parse(spec);
+    double w = wt.w, peak = ref_phi(0);
+    /* far from the axis (a short arc), near it (a long arc), the full ring, the axis */
+    const double cases[7][3] = {{20, 20.4, 0.3}, {20, 18.5, -1.9}, {2.5, 1.2, 0.4},
+                                {1.0, 0.9, 0.2}, {0.6, 0.5, 0.1}, {0, 1.3, 0.5},
+                                {2.4, 0, 1.1}};
+    for (int dims = 2; dims <= 3; dims++)
+        for (int k = 0; k < 7; k++) {
+            double r = cases[k][0] * C_W, rho = cases[k][1] * C_W, dz = cases[k][2] * C_W;
+            double g[2];
+            double v = mimas_kernel_ring(&wt, dims, r, rho, dz, g);
+            double scale = dims == 3 ? peak : peak * w;
+            /* Lucy's kernel has an r^3 term (its marginal rho^4 log rho) at the
+             * centre: where the ring passes near it the rule converges more slowly
+             * (2e-10 at worst here) */
+            double tol = C_LUCY ? 1e-9 : 1e-12;
+            assert_close(v, ref_ring(dims, r, rho, dz), tol * scale);
+            if (!(r > 0))
+                continue;
+            double h = 1e-6 * C_W, gg[2];
+            double fr = (mimas_kernel_ring(&wt, dims, r + h, rho, dz, gg) -
+                         mimas_kernel_ring(&wt, dims, r - h, rho, dz, gg)) / (2 * h);
+            assert_close(g[0], fr, 1e-5 * fabs(fr) + 1e-7 * scale / w);
+            if (dims == 3) {
+                double fz = (mimas_kernel_ring(&wt, dims, r, rho, dz + h, gg) -
+                             mimas_kernel_ring(&wt, dims, r, rho, dz - h, gg)) / (2 * h);
+                assert_close(g[1], fz, 1e-5 * fabs(fz) + 1e-7 * scale / w);
+            }
+        }
+}
+
+static void test_ring(void **state)
+{
+    (void)state;
+    check_ring("gauss:w=0.002");
+    check_ring("gauss:w=0.002,shift");
+    check_ring("lucy:c=0.004");
+}
+
 static void test_parse_errors(void **state)
 {
     (void)state;
     mimas_weight wt;
     mimas_error err;
     const char *bad[] = {"gauss", "gauss:w=0", "gauss:w=1,cutoff=-1", "gauss:x=1", "lucy:c=",
-                         "lucy:c=-2", "shepard:", "box"};
+                         "lucy:c=-2", "shepard:", "box", "gauss:w=1,shifted", "gauss:shift"};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
         if (mimas_weight_parse(&wt, bad[k], &err) != MIMAS_EUSAGE)
             fail_msg("'%s' accepted", bad[k]);
+    assert_int_equal(mimas_weight_parse(&wt, "gauss:w=1,shift,cutoff=2.5", &err), MIMAS_OK);
+    assert_true(wt.shifted && wt.cutoff == 2.5);
+    assert_int_equal(mimas_weight_parse(&wt, "gauss:w=1", &err), MIMAS_OK);
+    assert_true(!wt.shifted && wt.shift == 0.0 && wt.cutoff == 3.0);
 }
 
 int main(void)
@@ -102,6 +405,9 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_gauss),
         cmocka_unit_test(test_lucy),
+        cmocka_unit_test(test_kappa),
+        cmocka_unit_test(test_marginals),
+        cmocka_unit_test(test_ring),
         cmocka_unit_test(test_parse_errors),
     };
     return cmocka_run_group_tests_name("weight", tests, NULL, NULL);

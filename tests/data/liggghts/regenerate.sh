@@ -34,4 +34,6 @@ gzip -9 -n dump.images.pgl
 rm -f data.images
 python3 check_triclinic.py > check_output.txt
 cd ..
+echo "== case 4: keyword_sets (needs hopper_walls/hopper.stl)"
+keyword_sets/make.sh
 echo "done"

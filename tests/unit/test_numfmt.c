@@ -1,0 +1,120 @@
+/* Shortest round-trip text for doubles: every value reads back (strtod) as the
+ * same double, and no shorter printf("%.Ng") form does. */
+#include <config.h>
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "numfmt.h"
+
+/* significant digits of a decimal string (mantissa digits without leading zeros) */
+static int digits(const char *s)
+{
+    int n = 0, started = 0;
+    for (; *s && *s != 'e' && *s != 'E'; s++)
+        if (*s >= '0' && *s <= '9') {
+            started |= *s != '0';
+            if (started)
+                n++;
+        }
+    /* trailing zeros of an integer written as a decimal do not count */
+    return n;
+}
+
+static void check(double v)
+{
+    char buf[MIMAS_NUMFMT_MAX];
+    size_t n = mimas_format_double(v, buf);
+    assert_int_equal(n, strlen(buf));
+    double back = strtod(buf, NULL);
+    if (memcmp(&back, &v, sizeof v) != 0)
+        fail_msg("%.17g printed as '%s' reads back as %.17g", v, buf, back);
+    /* the shortest %.Ng that reads back has as many significant digits */
+    if (v != 0 && isfinite(v)) {
+        int shortest = 17;
+        for (int p = 1; p <= 17; p++) {
+            char t[64];
+            snprintf(t, sizeof t, "%.*e", p - 1, v);
+            if (strtod(t, NULL) == v) {
+                shortest = p;
+                break;
+            }
+        }
+        char mant[64];
+        snprintf(mant, sizeof mant, "%s", buf);
+        int got = digits(mant);
+        /* integers like 1200 carry trailing zeros that are not significant */
+        if (fabs(v) >= 1 && !strchr(buf, 'e') && !strchr(buf, '.')) {
+            int z = 0;
+            for (size_t k = strlen(buf); k > 0 && buf[k - 1] == '0'; k--)
+                z++;
+            got -= z;
+        }
+        if (got != shortest)
+            fail_msg("%.17g printed as '%s' (%d digits), the shortest has %d", v, buf, got,
+                     shortest);
+    }
+}
+
+static void test_special(void **state)
+{
+    (void)state;
+    char buf[MIMAS_NUMFMT_MAX];
+    mimas_format_double(NAN, buf);
+    assert_string_equal(buf, "nan");
+    mimas_format_double(INFINITY, buf);
+    assert_string_equal(buf, "inf");
+    mimas_format_double(-INFINITY, buf);
+    assert_string_equal(buf, "-inf");
+    mimas_format_double(0.0, buf);
+    assert_string_equal(buf, "0");
+    mimas_format_double(-0.0, buf);
+    assert_string_equal(buf, "-0");
+    mimas_format_double(0.1, buf);
+    assert_string_equal(buf, "0.1");
+    mimas_format_double(1e-5, buf);
+    assert_true(strchr(buf, 'e') != NULL);
+    const double edge[] = {5e-324, 2.2250738585072014e-308, 2.2250738585072009e-308,
+                           1.7976931348623157e308, 1e23, 9007199254740993.0, 0.3, 2.0 / 3.0,
+                           1e16, 1e17, 123456789012345680.0, 0.0001, 0.00012345, 1e-4 * 0.99};
+    for (size_t k = 0; k < sizeof edge / sizeof edge[0]; k++) {
+        check(edge[k]);
+        check(-edge[k]);
+    }
+}
+
+/* random bit patterns (all exponents) and random values of field-like magnitude */
+static void test_random(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    for (int k = 0; k < 200000; k++) {
+        uint64_t bits = ((uint64_t)gsl_rng_get(rng) << 32) ^ (uint64_t)gsl_rng_get(rng);
+        double v;
+        memcpy(&v, &bits, sizeof v);
+        if (isnan(v))
+            continue;
+        check(v);
+        check((gsl_rng_uniform(rng) - 0.3) * pow(10.0, (int)(gsl_rng_uniform_int(rng, 30)) - 15));
+    }
+    gsl_rng_free(rng);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_special),
+        cmocka_unit_test(test_random),
+    };
+    return cmocka_run_group_tests_name("numfmt", tests, NULL, NULL);
+}
