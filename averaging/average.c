@@ -48,7 +48,7 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
     *out = NULL;
     mimas_average *a = calloc(1, sizeof *a);
     if (!a)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the averaging");
     a->opt = *o;
     a->grid = o->grid;
     a->cells = o->grid_none ? 1 : mimas_grid_cells(&o->grid);
@@ -306,7 +306,7 @@ static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
         if (n)
             a->ncontacts = n;
         if (!k || !n)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the averaging");
         a->cap = p->n;
     }
     for (size_t k = 0; k < p->n; k++) {
@@ -456,7 +456,9 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
         memset(a->thread_sum, 0, (size_t)a->threads * nsum * sizeof *a->thread_sum);
 #ifdef _OPENMP
         int failed = 0;
-#pragma omp parallel num_threads(a->threads) reduction(| : failed)
+/* small frames on one thread: waking the others costs more than they do */
+#pragma omp parallel num_threads(a->threads) reduction(| : failed) \
+    if (f->particles.n + f->contacts.n >= 2000)
         {
             int t = omp_get_thread_num(), nt = omp_get_num_threads();
             failed |= deposit_frame(a, f, &g, &dp, a->thread_sum + (size_t)t * nsum, t, nt);

@@ -92,7 +92,7 @@ int mimas_cell_list_build(mimas_cell_list *cl, const mimas_box *box, size_t n,
     if (total + 1 > cl->bins_cap) {
         size_t *s = realloc(cl->start, (total + 1) * sizeof *s);
         if (!s)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the cell list");
         cl->start = s;
         cl->bins_cap = total + 1;
     }
@@ -103,7 +103,7 @@ int mimas_cell_list_build(mimas_cell_list *cl, const mimas_box *box, size_t n,
         if (b)
             cl->bin = b;
         if (!ix || !b)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the cell list");
         cl->n_cap = n;
     }
     /* counting sort by bin */

@@ -83,7 +83,7 @@ int mimas_fieldset_from_average(mimas_fieldset **out, const mimas_average *avg, 
     *out = NULL;
     mimas_fieldset *fs = fieldset_new(name);
     if (!fs)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the field file");
     const mimas_grid *g = mimas_average_grid(avg);
     int none = mimas_average_grid_none(avg);
     fs->cyl = !none && g->kind == MIMAS_GRID_CYLINDRICAL;
@@ -108,7 +108,7 @@ int mimas_fieldset_from_average(mimas_fieldset **out, const mimas_average *avg, 
     if (!ok || !fs->mean || !fs->sd || !fs->count ||
         mimas_average_fields(avg, fs->mean, fs->sd, fs->count)) {
         mimas_fieldset_close(fs);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the field file");
     }
     *out = fs;
     return MIMAS_OK;
@@ -199,7 +199,7 @@ static int read_grid(mimas_fieldset *fs, mimas_error *err)
         fs->centre[d] = calloc((size_t)n[d], sizeof *fs->centre[d]);
         fs->grid.centre[d] = fs->centre[d];
         if (!fs->centre[d]) {
-            rc = mimas_error_set(err, MIMAS_EIO, "out of memory");
+            rc = mimas_error_set(err, MIMAS_EIO, "out of memory for the field file");
             break;
         }
         if (none)
@@ -227,7 +227,7 @@ int mimas_fieldset_open(mimas_fieldset **out, const char *path, mimas_error *err
     *out = NULL;
     mimas_fieldset *fs = fieldset_new(path);
     if (!fs)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the field file");
     h5_quiet q;
     h5_quiet_begin(&q);
     int rc = MIMAS_OK;
@@ -320,7 +320,7 @@ int mimas_fieldset_read(const mimas_fieldset *fs, const char *field, double *mea
     if (sem && (!sd || !count)) {
         free(sd);
         free(count);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the field file");
     }
     h5_quiet q;
     h5_quiet_begin(&q);

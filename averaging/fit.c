@@ -24,6 +24,7 @@ const char *mimas_fit_status_name(mimas_fit_status s)
     case MIMAS_FIT_FEW_POINTS: return "few_points";
     case MIMAS_FIT_NO_CONVERGENCE: return "no_convergence";
     case MIMAS_FIT_UNDETERMINED: return "undetermined";
+    case MIMAS_FIT_IMPLAUSIBLE: return "implausible";
     }
     return "unknown";
 }
@@ -192,7 +193,7 @@ int mimas_fit_nonlinear(const mimas_fit_model *m, const double *x, const double 
                                MIMAS_FIT_MAXP);
     if (collect(x, y, sigma, n, &pt)) {
         release(&pt);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the fit");
     }
     size_t need = min_points > m->np + 1 ? min_points : m->np + 1;
     blank(out, m->np, pt.n, sigma != NULL,
@@ -202,7 +203,7 @@ int mimas_fit_nonlinear(const mimas_fit_model *m, const double *x, const double 
         rc = solve(m, &pt, p0, out);
     release(&pt);
     if (rc)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the fit");
     if (out->status == MIMAS_FIT_OK)
         settle(out);
     else
@@ -216,7 +217,7 @@ int mimas_fit_line(const double *x, const double *y, const double *sigma, size_t
     points pt;
     if (collect(x, y, sigma, n, &pt)) {
         release(&pt);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the fit");
     }
     size_t need = min_points > 3 ? min_points : 3;
     blank(out, 2, pt.n, sigma != NULL, pt.n < need ? MIMAS_FIT_FEW_POINTS : MIMAS_FIT_OK);

@@ -22,11 +22,14 @@ typedef enum mimas_fit_status {
     MIMAS_FIT_OK,
     MIMAS_FIT_FEW_POINTS,     /* fewer valid points than asked for (at least parameters + 1) */
     MIMAS_FIT_NO_CONVERGENCE, /* the solver stopped without meeting its tolerances */
-    MIMAS_FIT_UNDETERMINED    /* converged, but some parameter is not determined by the data
+    MIMAS_FIT_UNDETERMINED,   /* converged, but some parameter is not determined by the data
                                  (singular covariance, non-finite values) */
+    MIMAS_FIT_IMPLAUSIBLE     /* converged to what the model does not allow (a negative band
+                                 width) or with errors larger than the range of the data */
 } mimas_fit_status;
 
-/* "ok", "few_points", "no_convergence", "undetermined" (the status column). */
+/* "ok", "few_points", "no_convergence", "undetermined", "implausible" (the
+ * status column). */
 const char *mimas_fit_status_name(mimas_fit_status s);
 
 /* A model y = f(x; p): returns the value and, when grad is not NULL, fills

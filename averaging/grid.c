@@ -44,7 +44,7 @@ int mimas_grid_parse(mimas_grid *g, const char *spec, const char *axis, mimas_er
         return mimas_error_set(err, MIMAS_EUSAGE, "--axis applies to cylindrical grids (r=...)");
     char *text = strdup(spec), *save = NULL;
     if (!text)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the grid");
     for (char *tok = strtok_r(text, ",", &save); tok && !rc; tok = strtok_r(NULL, ",", &save)) {
         char name[8];
         double lo, hi;

@@ -2,6 +2,7 @@
 
 #include "output_h5.h"
 
+#include <errno.h>
 #include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
@@ -12,6 +13,7 @@
 #include "fields.h"
 #include "h5util.h"
 #include "output_xdmf.h"
+#include "tmpfiles.h"
 #include "xdmf.h"
 #include "outfile.h"
 #include "parameters_h5.h"
@@ -94,7 +96,15 @@ struct mimas_fields_file {
     hid_t *per;                /* /frames/<field>, one per field (or 0) */
     hsize_t frames;
     h5_quiet quiet;
+    int slot;                  /* tmp in the temporary-file registry */
 };
+
+/* Forgets the temporary name (renamed or removed) and frees ff. */
+static void release_names(mimas_fields_file *ff)
+{
+    mimas_tmpfile_forget(ff->slot);
+    free(ff);
+}
 
 int mimas_fields_open(mimas_fields_file **out, const char *path, const unsigned char *want,
                       mimas_error *err)
@@ -104,17 +114,26 @@ int mimas_fields_open(mimas_fields_file **out, const char *path, const unsigned 
         return err->code;
     mimas_fields_file *ff = calloc(1, sizeof *ff);
     if (!ff)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
-    snprintf(ff->path, sizeof ff->path, "%s", path);
-    snprintf(ff->tmp, sizeof ff->tmp, "%s.tmp%ld", path, (long)getpid());
+        return mimas_error_set(err, MIMAS_EIO, "%s: out of memory for the field file", path);
+    ff->slot = -1;
+    int w = snprintf(ff->path, sizeof ff->path, "%s", path);
+    if (w < 0 || (size_t)w >= sizeof ff->path - 8 ||
+        mimas_tmpfile_name(ff->tmp, sizeof ff->tmp, path)) {
+        free(ff);
+        return mimas_error_set(err, MIMAS_EUSAGE, "%s: the file name is too long", path);
+    }
+    ff->slot = mimas_tmpfile_add(ff->tmp);
     for (size_t k = 0; k < mimas_fields_count() && k < sizeof ff->want; k++)
         ff->want[k] = want ? want[k] : 1;
     h5_quiet_begin(&ff->quiet);
     ff->file = H5Fcreate(ff->tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    char text[256];
+    h5_error_text(text, sizeof text);
     h5_quiet_end(&ff->quiet);
     if (ff->file < 0) {
-        free(ff);
-        return mimas_error_set(err, MIMAS_EIO, "%s: cannot create the field file", path);
+        release_names(ff);
+        return mimas_error_set(err, MIMAS_EIO, "%s: cannot create the field file%s%s", path,
+                               text[0] ? ": " : "", text);
     }
     *out = ff;
     return MIMAS_OK;
@@ -142,7 +161,7 @@ void mimas_fields_abort(mimas_fields_file *ff)
     H5Fclose(ff->file);
     h5_quiet_end(&ff->quiet);
     remove(ff->tmp);
-    free(ff);
+    release_names(ff);
 }
 
 int mimas_fields_parameters(mimas_fields_file *ff, const char *group, const mimas_parameters *ps,
@@ -260,13 +279,16 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
            *count = malloc(cells * nf * sizeof *count), *col = malloc(cells * sizeof *col);
     if (!mean || !sd || !count || !col || mimas_average_fields(a, mean, sd, count)) {
         free(mean), free(sd), free(count), free(col);
+        int code = mimas_error_set(err, MIMAS_EIO, "%s: out of memory for the fields of %zu "
+                                   "cells", ff->path, cells);
         mimas_fields_abort(ff);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return code;
     }
     h5_quiet q;
     h5_quiet_begin(&q);
     hid_t file = ff->file;
     int rc = 0;
+    char why[300] = "";
     /* the times of the frames, for the per-frame sidecar */
     size_t nframes = (size_t)ff->frames;
     double *times = malloc((nframes ? nframes : 1) * sizeof *times);
@@ -346,15 +368,22 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
         size_t ng = fields_xdmf_stored(g, none) ? fields_groups(cyl, ff->want, groups, 16) : 0;
         if (!rc && ng)
             rc |= fields_write_cartesian(file, g, groups, ng, mean, nf);
+        char text[256];
+        h5_error_text(text, sizeof text);
         rc |= H5Fclose(file) < 0;
+        if (rc && !text[0])
+            h5_error_text(text, sizeof text);
+        snprintf(why, sizeof why, "%s", text);
         if (!rc && fields_write_xdmf(ff->path, g, none, ff->want, nframes, times, 1,
                                      vor ? "stress" : "cstress", err))
             rc = 2;
     }
     h5_quiet_end(&q);
     free(mean), free(sd), free(count), free(col), free(times);
-    if (!rc && rename(ff->tmp, ff->path) != 0)
+    if (!rc && rename(ff->tmp, ff->path) != 0) {
         rc = 1;
+        snprintf(why, sizeof why, "cannot rename it into place: %s", strerror(errno));
+    }
     if (rc) {
         remove(ff->tmp);
         char side[4200];
@@ -363,11 +392,11 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
         mimas_xdmf_path(ff->path, "-frames", side, sizeof side);
         remove(side);
         int code = rc == 2 ? MIMAS_EIO
-                           : mimas_error_set(err, MIMAS_EIO, "%s: cannot write the field file",
-                                             ff->path);
-        free(ff);
+                           : mimas_error_set(err, MIMAS_EIO, "%s: cannot write the field file%s%s",
+                                             ff->path, why[0] ? ": " : "", why);
+        release_names(ff);
         return code;
     }
-    free(ff);
+    release_names(ff);
     return MIMAS_OK;
 }

@@ -90,7 +90,7 @@ int mimas_rheology_mu_I(const double *I, const double *mu, size_t n, mimas_fit *
            *sorted = malloc((n ? n : 1) * sizeof *sorted);
     if (!x || !y || !sorted) {
         free(x), free(y), free(sorted);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the rheology");
     }
     size_t m = 0;
     double q0[3] = {INFINITY, -INFINITY, 0};
@@ -123,7 +123,7 @@ int mimas_rheology_power_law(const double *x, const double *y, size_t n, mimas_f
     double *lx = malloc((n ? n : 1) * sizeof *lx), *ly = malloc((n ? n : 1) * sizeof *ly);
     if (!lx || !ly) {
         free(lx), free(ly);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the rheology");
     }
     for (size_t i = 0; i < n; i++) {
         /* log of a value <= 0 is not finite: the fit skips it */
@@ -194,10 +194,10 @@ static int select_cells(const mimas_fieldset *fs, const mimas_rheology_options *
         *cols[k] = malloc((cells ? cells : 1) * sizeof **cols[k]);
     for (int k = 0; k < 5; k++)
         if (!f[k])
-            rc = mimas_error_set(err, MIMAS_EIO, "out of memory");
+            rc = mimas_error_set(err, MIMAS_EIO, "out of memory for the rheology");
     for (int k = 0; k < 6; k++)
         if (!*cols[k])
-            rc = mimas_error_set(err, MIMAS_EIO, "out of memory");
+            rc = mimas_error_set(err, MIMAS_EIO, "out of memory for the rheology");
     for (int k = 0; !rc && k < 5; k++)
         rc = mimas_fieldset_read(fs, need[k], f[k], NULL, err);
     c->n = 0;
@@ -291,11 +291,11 @@ int mimas_rheology_analyse(const mimas_fieldset *fs, const mimas_rheology_option
     *out = NULL;
     mimas_rheology *r = calloc(1, sizeof *r);
     if (!r)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the rheology");
     r->opt = *o;
     r->rows = malloc((32 + o->nrate_windows + o->nI_windows) * sizeof *r->rows);
     int rc = r->rows ? select_cells(fs, o, &r->cells, err)
-                     : mimas_error_set(err, MIMAS_EIO, "out of memory");
+                     : mimas_error_set(err, MIMAS_EIO, "out of memory for the rheology");
     const mimas_rheology_cells *c = &r->cells;
     if (!rc)
         rc = mimas_rheology_yield(c->p, c->tau, c->n, &r->yield, err);

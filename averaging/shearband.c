@@ -93,7 +93,7 @@ int mimas_band_fit(const double *r, const double *y, const double *sigma, size_t
            *s = sigma ? malloc((n ? n : 1) * sizeof *s) : NULL;
     if (!u || !v || (sigma && !s)) {
         free(u), free(v), free(s);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the shear-band fit");
     }
     size_t m = 0;
     double r0 = INFINITY, r1 = -INFINITY;
@@ -140,6 +140,15 @@ int mimas_band_fit(const double *r, const double *y, const double *sigma, size_t
         /* B erf(x/W) = (-B) erf(x/(-W)) */
         out->p[MIMAS_BAND_W] = -out->p[MIMAS_BAND_W];
         out->p[MIMAS_BAND_B] = -out->p[MIMAS_BAND_B];
+    }
+    /* a band that falls with r (the wrong sign of Omega), or a centre or
+     * width known no better than the radial range of the data, is no fit */
+    double range = r1 - r0;
+    if (!(out->p[MIMAS_BAND_W] > 0) || !(out->err[MIMAS_BAND_RC] <= range) ||
+        !(out->err[MIMAS_BAND_W] <= range)) {
+        for (size_t k = 0; k < out->np; k++)
+            out->p[k] = out->err[k] = NAN;
+        out->status = MIMAS_FIT_IMPLAUSIBLE;
     }
     return MIMAS_OK;
 }
@@ -218,7 +227,7 @@ int mimas_band_analyse(const mimas_fieldset *fs, const mimas_band_options *o, mi
     mimas_band_layer *layers = calloc(nz, sizeof *layers);
     if (!b || !store || !layers) {
         free(b), free(store), free(layers);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the shear-band fit");
     }
     b->model = o->model;
     b->nlayers = nz;

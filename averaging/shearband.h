@@ -30,8 +30,10 @@ double mimas_band_profile(int model, const double *p, double r);
 /* Fits one profile y(r) = omega/Omega (sigma its standard errors, or NULL
  * for an unweighted fit).  Invalid points (NaN) are skipped; fewer than
  * min_points valid ones give the status few_points.  Model 4 reports W > 0
- * (the sign of B says which side rotates); model 2 keeps the sign of W (a
- * negative W is a profile that falls with r). */
+ * (the sign of B says which side rotates); for model 2 a negative W (a
+ * profile that falls with r: the sign of Omega is wrong) and, for both, an
+ * error of Rc or W beyond the radial range of the data give the status
+ * implausible. */
 int mimas_band_fit(const double *r, const double *y, const double *sigma, size_t n, int model,
                    size_t min_points, mimas_fit *out, mimas_error *err);
 

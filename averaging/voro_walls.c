@@ -64,12 +64,12 @@ int mimas_voro_walls_parse(const char *spec, mimas_voro_wall *walls, size_t max,
     *n = 0;
     char *text = strdup(spec), *save = NULL;
     if (!text)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the walls");
     int rc = MIMAS_OK;
     for (char *tok = strtok_r(text, ",", &save); tok && !rc; tok = strtok_r(NULL, ",", &save)) {
         char *copy = strdup(tok);
         if (!copy) {
-            rc = mimas_error_set(err, MIMAS_EIO, "out of memory");
+            rc = mimas_error_set(err, MIMAS_EIO, "out of memory for the walls");
             break;
         }
         mimas_voro_wall w;

@@ -31,7 +31,7 @@ int mimas_voronoi_create(mimas_voronoi **out, const mimas_voronoi_options *o, mi
     *out = NULL;
     mimas_voronoi *v = calloc(1, sizeof *v);
     if (!v)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the Voronoi cells");
     v->opt = *o;
     mimas_cell_list_init(&v->cl);
     if (o->velocity_width > 0) {
@@ -75,7 +75,7 @@ int mimas_voronoi_reported(const mimas_voronoi *v, const mimas_particles *p, siz
     do {                                                          \
         void *g_ = realloc((ptr), (n) * sizeof *(ptr));           \
         if (!g_)                                                  \
-            return mimas_error_set(err, MIMAS_EIO, "out of memory"); \
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the Voronoi cells"); \
         (ptr) = g_;                                               \
     } while (0)
 

@@ -21,9 +21,12 @@ typedef struct reader_backend {
     int (*next)(void *state, mimas_frame *f, mimas_error *err);
     size_t (*skipped)(void *state); /* may be NULL */
     void (*close)(void *state);
+    /* the file the last frame came from (for messages) */
+    const char *(*source)(void *state);
     /* optional, for formats that can do them without reading the frame's
      * arrays (NULL: readers/reader.c reads the frame instead): the step and
-     * time of the next frame without consuming it, and passing over it */
+     * time of the next frame without consuming it, and passing over it (both
+     * or neither) */
     int (*peek)(void *state, int64_t *step, double *time, mimas_error *err);
     int (*skip)(void *state, mimas_error *err);
     /* the run parameters of the inputs (may be NULL: the format has none) */

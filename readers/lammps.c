@@ -78,7 +78,7 @@ static int open_state(void **state, const char *const *inputs, size_t ninputs,
 {
     lammps_state *st = calloc(1, sizeof *st);
     if (!st)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the dump reader");
     st->opt = *o;
     mimas_id_index_init(&st->index);
     char **names;
@@ -266,5 +266,11 @@ static size_t skipped(void *state)
     return ((lammps_state *)state)->skipped;
 }
 
+static const char *source(void *state)
+{
+    const lammps_state *st = state;
+    return st->atoms.paths[st->atoms.cur < st->atoms.npaths ? st->atoms.cur : st->atoms.npaths - 1];
+}
+
 const reader_backend reader_lammps = {"lammps", "LAMMPS/LIGGGHTS text dump", probe, open_state,
-                                      next, skipped, close_state, peek, skip, NULL};
+                                      next, skipped, close_state, source, peek, skip, NULL};

@@ -53,7 +53,7 @@ static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
     int prev_idx = 0;
     char *save = NULL, *text = strdup(s->h.columns);
     if (!text)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the ATOMS columns");
     for (char *tok = strtok_r(text, " \t", &save); tok; tok = strtok_r(NULL, " \t", &save)) {
         dump_col *c = &cl->cols[cl->ncols++];
         c->target = A_EXTRA;
@@ -113,10 +113,17 @@ static int build_layout(dump_series *s, atom_layout *l, mimas_error *err)
             return text_error(&s->in, err, "the ATOMS columns have an incomplete vector "
                                            "(all three components are needed)");
     }
+    /* unwrapped positions are wrapped into a periodic box by the reader
+     * (readers/reader.c), which counts the shifts in image flags that start
+     * at 0: the dump's own ix iy iz belong to its wrapped x y z */
+    int unwrapped = l->pos_target == A_XU || l->pos_target == A_XSU;
+    if (unwrapped)
+        l->bits |= MIMAS_P_IMAGE;
     /* position columns not used (e.g. xu beside x) are skipped */
     for (size_t c = 0; c < cl->ncols; c++) {
         int t = cl->cols[c].target;
-        if ((t == A_X || t == A_XU || t == A_XS || t == A_XSU) && t != l->pos_target)
+        if (((t == A_X || t == A_XU || t == A_XS || t == A_XSU) && t != l->pos_target) ||
+            (t == A_IMAGE && unwrapped))
             cl->cols[c].target = A_SKIP;
         if (t == A_DIAMETER && have[A_RADIUS][0])
             cl->cols[c].target = A_SKIP;
@@ -228,6 +235,8 @@ int atoms_read(dump_series *s, atom_layout *l, mimas_frame *f, double density, d
         if (rc)
             return rc;
     }
+    if (l->pos_target == A_XU || l->pos_target == A_XSU)
+        memset(p->image, 0, n * sizeof *p->image);
     f->step = s->h.step;
     f->time = s->h.has_time ? s->h.time : (dt > 0 ? (double)s->h.step * dt : NAN);
     f->box = s->h.box;

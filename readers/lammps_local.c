@@ -106,7 +106,7 @@ static int gran_layout(dump_series *s, local_layout *l, const char *keywords, mi
     int history_open = 0;
     char *text = strdup(keywords), *save = NULL;
     if (!text)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the contact dump reader");
     int rc = MIMAS_OK;
     for (char *tok = strtok_r(text, ",", &save); tok && !rc; tok = strtok_r(NULL, ",", &save)) {
         char *colon = strchr(tok, ':');
@@ -188,7 +188,7 @@ static int named_layout(dump_series *s, local_layout *l, const char *names, mima
 {
     char *text = strdup(names), *save = NULL;
     if (!text)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the contact dump reader");
     size_t c = 0;
     int rc = MIMAS_OK, prev_idx = 0;
     const char *sep = strchr(names, ',') ? "," : " \t";
@@ -394,7 +394,7 @@ int local_read(dump_series *s, local_layout *l, mimas_frame *f, const mimas_id_i
     rc = setup_table(l, tab, d, n, err);
     double *dist = l->derive_overlap ? malloc((n ? n : 1) * sizeof *dist) : NULL;
     if (!rc && l->derive_overlap && !dist)
-        rc = mimas_error_set(err, MIMAS_EIO, "out of memory");
+        rc = mimas_error_set(err, MIMAS_EIO, "out of memory for the contact dump reader");
     mimas_contacts *c = &f->contacts;
     mimas_wall_contacts *w = &f->walls;
     for (size_t k = 0; !rc && k < n; k++) {

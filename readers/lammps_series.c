@@ -115,7 +115,7 @@ static int keep_columns(dump_header *h, const char *names, mimas_error *err)
     if (n > h->columns_cap) {
         char *c = realloc(h->columns, n);
         if (!c)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the dump reader");
         h->columns = c;
         h->columns_cap = n;
     }
@@ -231,7 +231,7 @@ int dump_series_open(dump_series *s, char **paths, size_t n, mimas_error *err)
     if (n > 1) {
         named_step *ns = malloc(n * sizeof *ns);
         if (!ns)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the dump reader");
         for (size_t k = 0; k < n; k++) {
             ns[k].path = paths[k];
             int rc = first_step(paths[k], &ns[k].step, err);
@@ -316,6 +316,7 @@ int dump_columns_current(const dump_columns *c, const char *header)
 
 void dump_columns_free(dump_columns *c)
 {
+    free(c->slots);
     free(c->header);
     free(c->cols);
     free(c->extra_name);
@@ -331,15 +332,43 @@ int dump_columns_reset(dump_columns *c, const char *header, mimas_error *err)
     c->cols = calloc(cap, sizeof *c->cols);
     c->extra_name = calloc(cap, sizeof *c->extra_name);
     c->extra_ncomp = calloc(cap, sizeof *c->extra_ncomp);
-    if (!c->header || !c->cols || !c->extra_name || !c->extra_ncomp)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+    c->nslots = 2 * cap;
+    c->slots = calloc(c->nslots, sizeof *c->slots);
+    if (!c->header || !c->cols || !c->extra_name || !c->extra_ncomp || !c->slots)
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the %zu-character column "
+                               "header", strlen(header));
     return MIMAS_OK;
+}
+
+/* FNV-1a of the name as stored (cut to the slot width) */
+static size_t name_hash(const char *name)
+{
+    size_t h = 1469598103934665603u;
+    for (size_t k = 0; name[k] && k < 63; k++)
+        h = (h ^ (unsigned char)name[k]) * 1099511628211u;
+    return h;
+}
+
+size_t dump_columns_find_extra(const dump_columns *c, const char *name)
+{
+    char key[64];
+    snprintf(key, sizeof key, "%s", name);
+    for (size_t h = name_hash(key) % c->nslots;; h = (h + 1) % c->nslots) {
+        if (!c->slots[h])
+            return (size_t)-1;
+        if (!strcmp(c->extra_name[c->slots[h] - 1], key))
+            return c->slots[h] - 1;
+    }
 }
 
 size_t dump_columns_add_extra(dump_columns *c, const char *name, int ncomp)
 {
     snprintf(c->extra_name[c->nextra], sizeof c->extra_name[0], "%s", name);
     c->extra_ncomp[c->nextra] = ncomp;
+    size_t h = name_hash(c->extra_name[c->nextra]) % c->nslots;
+    while (c->slots[h])
+        h = (h + 1) % c->nslots;
+    c->slots[h] = c->nextra + 1;
     return c->nextra++;
 }
 
@@ -373,9 +402,8 @@ int dump_columns_extra_column(dump_columns *c, dump_col *col, const char *name, 
         col->extra = c->nextra - 1;
         col->comp = c->extra_ncomp[col->extra]++;
     } else {
-        for (size_t e = 0; e < c->nextra; e++)
-            if (!strcmp(c->extra_name[e], idx ? base : name))
-                return -1;
+        if (dump_columns_find_extra(c, idx ? base : name) != (size_t)-1)
+            return -1;
         col->extra = dump_columns_add_extra(c, idx ? base : name, 1);
         col->comp = 0;
     }
@@ -395,7 +423,8 @@ int dump_columns_extras_to(const dump_columns *c, void *tab, const mimas_table_d
         return MIMAS_OK;
     mimas_table_drop_extras(tab, d);
     int rc = MIMAS_OK;
+    /* the names are distinct (the layout refused a repeated one) */
     for (size_t e = 0; !rc && e < c->nextra; e++)
-        rc = mimas_table_add_extra(tab, d, c->extra_name[e], c->extra_ncomp[e], NULL, err);
+        rc = mimas_table_add_new_extra(tab, d, c->extra_name[e], c->extra_ncomp[e], err);
     return rc;
 }

@@ -49,6 +49,7 @@ typedef struct dump_columns {
     size_t nextra;
     char (*extra_name)[64];
     int *extra_ncomp;
+    size_t *slots, nslots;  /* hash of the extra names: index + 1, 0 free */
 } dump_columns;
 
 /* 1 if c was built from this header text. */
@@ -56,6 +57,9 @@ int dump_columns_current(const dump_columns *c, const char *header);
 /* Frees c and allocates room for the columns of header; ncols is 0. */
 int dump_columns_reset(dump_columns *c, const char *header, mimas_error *err);
 size_t dump_columns_add_extra(dump_columns *c, const char *name, int ncomp);
+/* The extra column of that name, or (size_t)-1 (a hash: headers of 10^5
+ * columns take linear time). */
+size_t dump_columns_find_extra(const dump_columns *c, const char *name);
 /* Makes column col (named name) an extra column: consecutive NAME[1],
  * NAME[2], ... form one extra of that many components (*prev_idx: the
  * index of the previous column, 0 after a column that is not an extra).

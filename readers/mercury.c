@@ -444,7 +444,7 @@ static int reserve_rows(merc_state *s, size_t n, mimas_error *err)
         grow_array((void **)&s->row_n, cap, sizeof *s->row_n) ||
         grow_array((void **)&s->drop, cap, sizeof *s->drop) ||
         grow_array((void **)&s->keys, cap, sizeof *s->keys))
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the MercuryDPM reader");
     s->row_cap = cap;
     return MIMAS_OK;
 }
@@ -857,7 +857,7 @@ static int open_stream(void **state, const char *const *inputs, size_t ninputs,
         return rc;
     merc_state *s = calloc(1, sizeof *s);
     if (!s)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the MercuryDPM reader");
     s->density = o->density;
     s->with_contacts = o->ncontacts > 0;
     s->allow_missing = o->allow_missing_contacts;
@@ -919,6 +919,11 @@ static size_t skipped(void *state)
     return ((merc_state *)state)->skipped;
 }
 
+static const char *source(void *state)
+{
+    return ((merc_state *)state)->data.path;
+}
+
 const reader_backend reader_mercury = {"mercury", "MercuryDPM (.data, .fstat)", probe,
-                                       open_stream, next, skipped, close_stream, NULL, NULL,
-                                       NULL};
+                                       open_stream, next, skipped, close_stream, source, NULL,
+                                       NULL, NULL};

@@ -163,7 +163,7 @@ static herr_t scan_member(hid_t g, const char *name, scan_ctx *s)
         native_col *grown = realloc(s->flat->cols, (s->flat->ncols + 1) * sizeof nc);
         if (!grown) {
             H5Dclose(ds);
-            s->rc = mimas_error_set(s->err, MIMAS_EIO, "out of memory");
+            s->rc = mimas_error_set(s->err, MIMAS_EIO, "out of memory for the native reader");
             return 1;
         }
         s->flat->cols = grown;
@@ -184,7 +184,7 @@ static herr_t scan_member(hid_t g, const char *name, scan_ctx *s)
     native_col *grown = realloc(r->pcols, (r->npcols + 1) * sizeof nc);
     if (!grown) {
         H5Dclose(ds);
-        s->rc = mimas_error_set(s->err, MIMAS_EIO, "out of memory");
+        s->rc = mimas_error_set(s->err, MIMAS_EIO, "out of memory for the native reader");
         return 1;
     }
     r->pcols = grown;
@@ -360,6 +360,11 @@ static int check_version(mimas_native *r, mimas_error *err)
 static int open_particles(mimas_native *r, mimas_error *err)
 {
     int rc = MIMAS_OK;
+    if (H5Lexists(r->file, "/particles", H5P_DEFAULT) <= 0) {
+        /* the writer's header without a first frame: a file of zero frames */
+        r->frames = 0;
+        return MIMAS_OK;
+    }
     r->clock_step = open_ds(r, NATIVE_CLOCK "/step", &rc, err);
     r->clock_time = open_ds(r, NATIVE_CLOCK "/time", &rc, err);
     r->count = open_ds(r, NATIVE_COUNT "/value", &rc, err);
@@ -406,6 +411,108 @@ static int open_particles(mimas_native *r, mimas_error *err)
     if (!(r->p_bits & MIMAS_P_POS))
         return bad(r, err, "missing dataset %s", NATIVE_PARTICLES "/position/value");
     return MIMAS_OK;
+}
+
+/* ---- the per-frame index, checked once at open ---- */
+
+#define INDEX_BLOCK 4096   /* frames per read: memory does not grow with the file */
+
+static herr_t read_block(hid_t ds, hid_t memtype, int rank, const hsize_t *start,
+                         const hsize_t *count, void *buf);
+
+typedef struct index_block {
+    int64_t step[INDEX_BLOCK], count[INDEX_BLOCK], ofs[2][INDEX_BLOCK + 1];
+    int64_t cstep[2][INDEX_BLOCK];
+    double time[INDEX_BLOCK], lo[INDEX_BLOCK][3], hi[INDEX_BLOCK][3], edges[INDEX_BLOCK][9];
+} index_block;
+
+/* Frames k0 .. k0+n-1 of the step, time, count, box and contact offsets. */
+static int read_index(mimas_native *r, size_t k0, size_t n, index_block *b, mimas_error *err)
+{
+    hsize_t start[3] = {k0, 0, 0}, one[1] = {n}, vec[3] = {n, 3, 3};
+    if (read_block(r->clock_step, H5T_NATIVE_INT64, 1, start, one, b->step) < 0 ||
+        read_block(r->clock_time, H5T_NATIVE_DOUBLE, 1, start, one, b->time) < 0 ||
+        read_block(r->count, H5T_NATIVE_INT64, 1, start, one, b->count) < 0)
+        return bad(r, err, "%s", "cannot read the step, time and particle count of the frames");
+    if (read_block(r->box_lower, H5T_NATIVE_DOUBLE, 2, start, vec, b->lo) < 0 ||
+        read_block(r->box_upper, H5T_NATIVE_DOUBLE, 2, start, vec, b->hi) < 0 ||
+        read_block(r->box_edges, H5T_NATIVE_DOUBLE, r->triclinic ? 3 : 2, start, vec,
+                   b->edges) < 0)
+        return bad(r, err, "%s", "cannot read the box of the frames");
+    read_flat *fl[2] = {&r->contacts, &r->walls};
+    for (int t = 0; t < 2; t++) {
+        if (!fl[t]->present)
+            continue;
+        hsize_t n1 = n + 1;
+        if (read_block(fl[t]->offset, H5T_NATIVE_INT64, 1, start, &n1, b->ofs[t]) < 0 ||
+            read_block(fl[t]->step, H5T_NATIVE_INT64, 1, start, one, b->cstep[t]) < 0)
+            return bad(r, err, "cannot read the index of the %s", t ? "wall contacts"
+                                                                   : "contacts");
+    }
+    return MIMAS_OK;
+}
+
+/* What every frame's index must satisfy (as a text dump's header must):
+ * counts within the stored slots, steps increasing, times all known (finite,
+ * not decreasing) or all unknown (NaN), boxes finite and not inverted,
+ * contact offsets starting at 0 and not decreasing, contact steps equal to
+ * the particle steps. */
+static int check_index(mimas_native *r, mimas_error *err)
+{
+    if (r->frames == 0)
+        return MIMAS_OK;
+    index_block *b = malloc(sizeof *b);
+    if (!b)
+        return mimas_error_set(err, MIMAS_EIO, "%s: out of memory for the frame index", r->path);
+    int rc = MIMAS_OK, have_last = 0;
+    int64_t last_step = 0;
+    double last_time = 0;
+    const char *names[2] = {"contact", "wall-contact"};
+    read_flat *fl[2] = {&r->contacts, &r->walls};
+    for (size_t k0 = 0; !rc && k0 < r->frames; k0 += INDEX_BLOCK) {
+        size_t n = r->frames - k0 < INDEX_BLOCK ? r->frames - k0 : INDEX_BLOCK;
+        rc = read_index(r, k0, n, b, err);
+        for (size_t m = 0; !rc && m < n; m++) {
+            size_t k = k0 + m;
+            mimas_box box = {{b->lo[m][0], b->lo[m][1], b->lo[m][2]},
+                             {b->hi[m][0], b->hi[m][1], b->hi[m][2]},
+                             r->triclinic ? b->edges[m][3] : 0,
+                             r->triclinic ? b->edges[m][6] : 0,
+                             r->triclinic ? b->edges[m][7] : 0, {0, 0, 0}};
+            if (b->count[m] < 0 || (hsize_t)b->count[m] > r->nmax)
+                rc = bad(r, err, "frame %zu claims %lld particles; the file stores at most %llu",
+                         k, (long long)b->count[m], (unsigned long long)r->nmax);
+            else if (have_last && b->step[m] <= last_step)
+                rc = bad(r, err, "frame %zu has step %lld after step %lld: steps must increase",
+                         k, (long long)b->step[m], (long long)last_step);
+            else if (isinf(b->time[m]) || (have_last && isnan(b->time[m]) != isnan(last_time)))
+                rc = bad(r, err, "frame %zu has time %g: times must be finite in every frame "
+                         "or unknown (NaN) in every frame", k, b->time[m]);
+            else if (have_last && b->time[m] < last_time)
+                rc = bad(r, err, "frame %zu has time %.17g after time %.17g: times must not "
+                         "decrease", k, b->time[m], last_time);
+            else if (mimas_box_check(&box, err))
+                rc = mimas_error_prefix(err, "%s: frame %zu", r->path, k);
+            for (int t = 0; !rc && t < 2; t++) {
+                if (!fl[t]->present)
+                    continue;
+                int64_t lo = b->ofs[t][m], hi = b->ofs[t][m + 1];
+                if ((k == 0 && lo != 0) || lo < 0 || hi < lo || (hsize_t)hi > fl[t]->rows)
+                    rc = bad(r, err, "%s offsets of frame %zu (%lld..%lld) are out of order or "
+                             "beyond the %llu rows stored", names[t], k, (long long)lo,
+                             (long long)hi, (unsigned long long)fl[t]->rows);
+                else if (b->cstep[t][m] != b->step[m])
+                    rc = bad(r, err, "frame %zu: the %s step %lld differs from the particle "
+                             "step %lld", k, names[t], (long long)b->cstep[t][m],
+                             (long long)b->step[m]);
+            }
+            have_last = 1;
+            last_step = b->step[m];
+            last_time = b->time[m];
+        }
+    }
+    free(b);
+    return rc;
 }
 
 static void close_cols(native_col *cols, size_t n)
@@ -458,7 +565,7 @@ int mimas_native_open(mimas_native **out, const char *path, mimas_error *err)
     mimas_native *r = calloc(1, sizeof *r);
     if (!r || !(r->path = strdup(path))) {
         free(r);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the native reader");
     }
     mimas_id_index_init(&r->index);
     struct stat st;
@@ -526,6 +633,8 @@ int mimas_native_open(mimas_native **out, const char *path, mimas_error *err)
         rc = open_tube(r, err);
     if (!rc)
         rc = open_gas(r, err);
+    if (!rc)
+        rc = check_index(r, err);
     if (!rc)
         rc = open_metadata(r, err);
     h5_quiet_end(&q);
@@ -730,7 +839,7 @@ static int read_flat_frame(mimas_native *r, read_flat *t, size_t k, void *tab,
         void *dst = native_col_data(tab, d, &bound[c]);
         int is_index = bound[c].type == MIMAS_T_INDEX;
         if (is_index && ensure_ids(r, n))
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the native reader");
         if (read_block(bound[c].ds, native_mem_type(bound[c].type), rank, s, cnt,
                        is_index ? (void *)r->ids : dst) < 0)
             return bad(r, err, "cannot read %s/%s of frame %zu", d->name, bound[c].name, k);
@@ -799,6 +908,10 @@ int mimas_native_read(mimas_native *r, size_t k, mimas_frame *f, mimas_error *er
     if (!rc && r->has_gas)
         rc = read_gas(r, k, &f->gas, err);
     h5_quiet_end(&q);
+    /* the values, as strictly as a text reader checks them */
+    if (!rc && mimas_frame_check(f, err))
+        rc = mimas_error_prefix(err, "%s: frame %zu (step %lld)", r->path, k,
+                                (long long)f->step);
     return rc;
 }
 

@@ -31,7 +31,7 @@ static int open_stream(void **state, const char *const *inputs, size_t ninputs,
                                "--wall-contacts do not apply", inputs[0]);
     native_stream *s = calloc(1, sizeof *s);
     if (!s)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the native reader");
     s->inputs = inputs;
     s->ninputs = ninputs;
     /* open every file once up front so a bad one is reported before any work */
@@ -117,6 +117,12 @@ static const mimas_parameters *parameters(void *state)
     return &((native_stream *)state)->params;
 }
 
+static const char *source(void *state)
+{
+    const native_stream *s = state;
+    return s->inputs[s->file < s->ninputs ? s->file : s->ninputs - 1];
+}
+
 const reader_backend reader_native = {"native", "mimas native (HDF5, H5MD 1.1)", probe,
-                                      open_stream, next, NULL, close_stream, peek, skip,
+                                      open_stream, next, NULL, close_stream, source, peek, skip,
                                       parameters};

@@ -18,7 +18,7 @@ int text_open(text_input *t, const char *path, mimas_error *err)
     t->buf = malloc(2 * BLOCK + 1);
     if (!t->path || !t->buf) {
         text_close(t);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the text reader");
     }
     t->cap = 2 * BLOCK;
     errno = 0;
@@ -27,7 +27,7 @@ int text_open(text_input *t, const char *path, mimas_error *err)
         int e = errno;
         text_close(t);
         return mimas_error_set(err, MIMAS_EDATA, "%s: cannot open: %s", path,
-                               e ? strerror(e) : "out of memory");
+                               e ? strerror(e) : "out of memory for the text reader");
     }
     gzbuffer(t->gz, BLOCK);
     return MIMAS_OK;
@@ -71,7 +71,7 @@ static long refill(text_input *t, int *rc, mimas_error *err)
         }
         char *b = realloc(t->buf, 2 * t->cap + 1);
         if (!b) {
-            *rc = mimas_error_set(err, MIMAS_EIO, "out of memory");
+            *rc = mimas_error_set(err, MIMAS_EIO, "out of memory for the text reader");
             return -1;
         }
         t->buf = b;

@@ -7,12 +7,19 @@
 
 #include <errno.h>
 #include <getopt.h>
+#include <glob.h>
 #include <math.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
+
+#include <hdf5.h>
+
+#include "tmpfiles.h"
 
 #define MAX_OPTIONS 64
 
@@ -58,12 +65,12 @@ static int input_option(const cli_command *cmd, cli_inputs *in, size_t k, const 
     case 0: o->format = arg; return 0;
     case 1:
         if (push(&in->contacts, &o->ncontacts, arg))
-            return cli_fail(cmd, 2, "out of memory");
+            return cli_fail(cmd, 2, "out of memory for the list of options");
         o->contacts = in->contacts;
         return 0;
     case 2:
         if (push(&in->walls, &o->nwalls, arg))
-            return cli_fail(cmd, 2, "out of memory");
+            return cli_fail(cmd, 2, "out of memory for the list of options");
         o->walls = in->walls;
         return 0;
     case 3: o->contact_columns = arg; return 0;
@@ -192,6 +199,19 @@ void cli_print_man(const cli_command *cmd, const char *version, FILE *out)
                  ".SH SEE ALSO\n.BR mimas (1)\n");
 }
 
+/* Option arguments that are comma lists (by their placeholder: SPEC, LIST, L
+ * or one with a comma) may have no empty item; no argument may be empty. */
+static int check_argument(const cli_command *cmd, const cli_option *o, const char *arg)
+{
+    if (!arg[0] || !arg[strspn(arg, " \t")])
+        return cli_fail(cmd, 1, "--%s needs a value, not an empty %s", o->name, o->arg);
+    int list = strstr(o->arg, "SPEC") || strstr(o->arg, "LIST") || !strcmp(o->arg, "L") ||
+               strchr(o->arg, ',');
+    if (list && (arg[0] == ',' || arg[strlen(arg) - 1] == ',' || strstr(arg, ",,")))
+        return cli_fail(cmd, 1, "--%s '%s': an empty item in the comma list", o->name, arg);
+    return 0;
+}
+
 int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler, void *ctx,
               cli_inputs *inputs, int *first)
 {
@@ -246,6 +266,10 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, cli_handler handler
             }
         if (opt >= nall)
             return cli_fail(cmd, 1, "unknown option (see mimas %s --help)", cmd->name);
+        const cli_option *od = opt < cmd->noptions ? &cmd->options[opt]
+                                                   : &input_options[opt - cmd->noptions];
+        if (od->arg && check_argument(cmd, od, optarg))
+            return 1;
         int rc = opt >= cmd->noptions ? input_option(cmd, inputs, opt - cmd->noptions, optarg)
                  : handler            ? handler(ctx, opt, optarg)
                                       : 0;
@@ -311,7 +335,7 @@ int cli_parse_types(const cli_command *cmd, const char *opt, const char *arg, in
 {
     char *text = strdup(arg), *save = NULL;
     if (!text)
-        return cli_fail(cmd, 2, "out of memory");
+        return cli_fail(cmd, 2, "out of memory for the list of options");
     int rc = 0;
     for (char *tok = strtok_r(text, ",", &save); tok && !rc; tok = strtok_r(NULL, ",", &save)) {
         long v;
@@ -429,15 +453,22 @@ int cli_output_open(cli_output *o, const char *path, mimas_error *err)
         return MIMAS_OK;
     }
     o->path = path;
+    o->slot = -1;
     /* a device or a pipe takes the table as it comes: renamed onto, a
      * finished file would replace it */
-    if (mimas_output_is_special(path))
+    if (mimas_output_is_special(path)) {
         o->tmp[0] = '\0';
-    else
-        snprintf(o->tmp, sizeof o->tmp, "%s.tmp%ld", path, (long)getpid());
+    } else {
+        if (mimas_tmpfile_name(o->tmp, sizeof o->tmp, path))
+            return mimas_error_set(err, MIMAS_EUSAGE, "%s: the file name is too long", path);
+        o->slot = mimas_tmpfile_add(o->tmp);
+    }
     o->fp = fopen(o->tmp[0] ? o->tmp : path, "w");
-    if (!o->fp)
-        return mimas_error_set(err, MIMAS_EIO, "%s: cannot write: %s", path, strerror(errno));
+    if (!o->fp) {
+        int e = errno;
+        mimas_tmpfile_forget(o->slot);
+        return mimas_error_set(err, MIMAS_EIO, "%s: cannot write: %s", path, strerror(e));
+    }
     return MIMAS_OK;
 }
 
@@ -447,14 +478,20 @@ int cli_output_close(cli_output *o, int ok, mimas_error *err)
         return MIMAS_OK;
     int rc = MIMAS_OK;
     if (!o->path) {
-        if (ok && fflush(stdout) != 0)
-            rc = mimas_error_set(err, MIMAS_EIO, "cannot write the table");
+        errno = 0;
+        if (ok && (fflush(stdout) != 0 || ferror(stdout)))
+            rc = mimas_error_set(err, MIMAS_EIO, "cannot write the table to standard output: %s",
+                                 errno ? strerror(errno) : "write error");
     } else {
+        int bad = ferror(o->fp) != 0;
+        errno = 0;
         int closed = fclose(o->fp) == 0;
-        if (ok && (!closed || (o->tmp[0] && rename(o->tmp, o->path) != 0)))
-            rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", o->path);
+        if (ok && (bad || !closed || (o->tmp[0] && rename(o->tmp, o->path) != 0)))
+            rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table: %s", o->path,
+                                 errno ? strerror(errno) : "write error");
         if ((!ok || rc) && o->tmp[0])
             remove(o->tmp);
+        mimas_tmpfile_forget(o->slot);
     }
     o->fp = NULL;
     return rc;
@@ -473,4 +510,88 @@ int cli_write_table(const char *path, void (*write)(FILE *fp, const void *ctx), 
     if (bad && !rc)
         rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", path ? path : "-");
     return rc;
+}
+
+/* ---- signals: temporary files go with the process ---- */
+
+static void on_fatal_signal(int sig)
+{
+    mimas_tmpfile_remove_all();
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+static void cleanup_on_signals(void)
+{
+    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
+    for (size_t k = 0; k < sizeof sigs / sizeof sigs[0]; k++) {
+        struct sigaction sa;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_fatal_signal;
+        sigemptyset(&sa.sa_mask);
+        struct sigaction old;
+        /* a signal the caller ignores (nohup, a shell's background job) stays ignored */
+        if (sigaction(sigs[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN)
+            continue;
+        sigaction(sigs[k], &sa, NULL);
+    }
+}
+
+/* ---- an output is never one of the inputs ---- */
+
+static int same_file(const struct stat *a, const char *name)
+{
+    struct stat b;
+    return stat(name, &b) == 0 && a->st_dev == b.st_dev && a->st_ino == b.st_ino;
+}
+
+/* The input that is the file *st (NULL if none). */
+static const char *input_matching(const struct stat *st, const char *const *names, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        glob_t g;
+        memset(&g, 0, sizeof g);
+        if (strchr(names[k], '*') && glob(names[k], 0, NULL, &g) == 0) {
+            const char *hit = NULL;
+            for (size_t m = 0; m < g.gl_pathc && !hit; m++)
+                if (same_file(st, g.gl_pathv[m]))
+                    hit = names[k];
+            globfree(&g);
+            if (hit)
+                return hit;
+        } else if (same_file(st, names[k])) {
+            return names[k];
+        }
+    }
+    return NULL;
+}
+
+int cli_refuse_input_as_output(const cli_command *cmd, const char *output, const cli_inputs *in,
+                               char *const *names, int n)
+{
+    struct stat st;
+    if (!output || !strcmp(output, "-") || stat(output, &st) != 0)
+        return 0;
+    const char *hit = input_matching(&st, (const char *const *)names, n > 0 ? (size_t)n : 0);
+    if (!hit && in)
+        hit = input_matching(&st, in->contacts, in->opt.ncontacts);
+    if (!hit && in)
+        hit = input_matching(&st, in->walls, in->opt.nwalls);
+    if (hit)
+        return cli_fail(cmd, 1, "%s: the output is also an input (%s); it would be destroyed: "
+                        "choose another output name", output, hit);
+    return 0;
+}
+
+void cli_start(int argc, char **argv)
+{
+    (void)argc;
+#ifdef _OPENMP
+    if (!getenv("OMP_WAIT_POLICY") && setenv("OMP_WAIT_POLICY", "passive", 1) == 0)
+        execv("/proc/self/exe", argv); /* returns only if it failed: go on as we are */
+#else
+    (void)argv;
+#endif
+    H5dont_atexit();
+    cleanup_on_signals();
 }

@@ -77,6 +77,7 @@ typedef struct cli_output {
     FILE *fp;
     const char *path;   /* NULL: standard output */
     char tmp[4200];     /* "": written straight to path (a device or a pipe) */
+    int slot;           /* in the temporary-file registry (src/tmpfiles.h) */
 } cli_output;
 /* path NULL or "-": standard output; a path that is not a regular file
  * (/dev/null, a pipe) is written straight through. */
@@ -124,5 +125,23 @@ int cli_parse_range(const char *arg, double *lo, double *hi);
 int cli_parse_long(const char *s, long *v);
 /* --threads N (1..1024) into *threads; prints the usage error and returns 1 otherwise. */
 int cli_parse_threads(const cli_command *cmd, const char *arg, int *threads);
+
+/* ---- safety nets every command uses (issue 15) ---- */
+/* What main() does first:
+ * - OpenMP threads wait passively (OMP_WAIT_POLICY=passive) unless the user
+ *   set OMP_WAIT_POLICY: libgomp reads it when it is loaded, before main(),
+ *   so the program executes itself once more with it set;
+ * - HDF5 does not close files at exit (a file whose flush failed on a full
+ *   disk would make it loop; mimas closes its files itself);
+ * - SIGINT, SIGTERM, SIGHUP and SIGPIPE remove the temporary output files
+ *   (src/tmpfiles.h), then end the program as they would have. */
+void cli_start(int argc, char **argv);
+/* Refuses an output that is one of the inputs: 0 if output (NULL: none) is
+ * not an existing file that is also one of names[0..n-1] (after '*'
+ * expansion) or of in's contact files (NULL: none) -- the same file, by
+ * device and inode, whatever its name; else prints the usage error and
+ * returns 1. */
+int cli_refuse_input_as_output(const cli_command *cmd, const char *output, const cli_inputs *in,
+                               char *const *names, int n);
 
 #endif

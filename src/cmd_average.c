@@ -16,6 +16,7 @@
 #include "fields.h"
 #include "parallel.h"
 #include "reader.h"
+#include "xdmf.h"
 
 static const cli_option options[] = {
     {"grid", 0, "SPEC", "none, x=LO:HI:N[,y=..][,z=..], or r=LO:HI:N[,phi=LO:HI:N][,z=LO:HI:N]"},
@@ -232,6 +233,7 @@ typedef struct per_frame_sink {
     int cyl;
     const unsigned char *want;
     cli_table *tw;          /* the table, or NULL */
+    const char *tw_name;    /* its name in messages */
     mimas_fields_file *ff;  /* -o, or NULL */
     mimas_average *other;   /* a frame's average unpacked on rank 0 */
     int header_done;
@@ -275,7 +277,8 @@ static int write_frame(void *ctx, size_t position, const unsigned char *data, si
             write_header(s->tw, mimas_average_grid(s->other), s->o->grid_none, s->cyl,
                          s->want, 0, 1);
         if (write_rows(s->tw, s->other, s->o->grid_none, s->want, 0, &f))
-            rc = mimas_error_set(err, MIMAS_EIO, "cannot write the table");
+            rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table: %s", s->tw_name,
+                                 strerror(errno));
     }
     if (!rc && s->ff)
         rc = mimas_fields_append_frame(s->ff, s->other, f.step, f.time, err);
@@ -313,6 +316,16 @@ static int run(const cli_command *cmd, int argc, char **argv)
     unsigned char want[128];
     if (!rc)
         rc = choose_fields(&a, cyl, want);
+    if (!rc) {
+        /* the field file, its XDMF sidecar and the table */
+        char xdmf[4200] = "";
+        if (a.output)
+            mimas_xdmf_path(a.output, NULL, xdmf, sizeof xdmf);
+        rc = cli_refuse_input_as_output(cmd, a.output, &in, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.output ? xdmf : NULL, &in, argv + first,
+                                        argc - first) ||
+             cli_refuse_input_as_output(cmd, a.tsv, &in, argv + first, argc - first);
+    }
     mimas_reader *r = NULL;
     if (!rc)
         rc = cli_open_inputs(cmd, &in, argc, argv, first, &r);
@@ -335,7 +348,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
     FILE *out = table.fp;
     cli_table tw;
     cli_table_start(&tw, out, &a.table);
-    per_frame_sink sink = {&o, cyl, want, out ? &tw : NULL, NULL, NULL, 0};
+    per_frame_sink sink = {&o, cyl, want, out ? &tw : NULL,
+                           a.tsv && strcmp(a.tsv, "-") ? a.tsv : "standard output", NULL, NULL,
+                           0};
     if (!status && root && a.output)
         status = mimas_fields_open(&sink.ff, a.output, want, &err);
     if (!status && sink.ff)
@@ -400,7 +415,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (root && status == MIMAS_END && out && !a.per_frame) {
         write_header(&tw, mimas_average_grid(avg), o.grid_none, cyl, want, a.errors, 0);
         if (write_rows(&tw, avg, o.grid_none, want, a.errors, NULL))
-            status = mimas_error_set(&err, MIMAS_EIO, "cannot write the table");
+            status = mimas_error_set(&err, MIMAS_EIO, "%s: cannot write the table: %s",
+                                     a.tsv && strcmp(a.tsv, "-") ? a.tsv : "standard output",
+                                     strerror(errno));
     }
     if (root && status == MIMAS_END && ff) {
         char *line = cli_command_line(argc, argv);

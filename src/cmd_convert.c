@@ -133,6 +133,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse(cmd, argc, argv, on_option, &a, &in, &first);
     if (!rc && !a.output)
         rc = cli_fail(cmd, 1, "no output file: give -o OUT.h5");
+    if (!rc)
+        rc = cli_refuse_input_as_output(cmd, a.output, &in, argv + first, argc - first);
     mimas_reader *r = NULL;
     if (!rc)
         rc = cli_open_inputs(cmd, &in, argc, argv, first, &r);

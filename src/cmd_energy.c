@@ -268,6 +268,10 @@ static int run(const cli_command *cmd, int argc, char **argv)
         rc = cli_study_begin(cmd, &a.study, (size_t)(argc - first), "run (RUN.h5 or a log)");
     if (!rc && a.plot && !cli_study_on(&a.study))
         rc = cli_fail(cmd, 1, "--plot draws a study: it needs --study or --study-values");
+    if (!rc)
+        rc = cli_refuse_input_as_output(cmd, a.output, NULL, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.plot, NULL, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.study.trends, NULL, argv + first, argc - first);
     if (rc) {
         cli_study_free(&a.study);
         return rc < 0 ? 0 : rc;

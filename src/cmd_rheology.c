@@ -1,6 +1,6 @@
 /* mimas rheology: yield line, mu(I), viscosity power laws and windowed
  * viscosities from a field file, or from several as runs of a study
- * (docs/rheology.md, docs/study.md). */
+ * (docs/theory.md §7.2, docs/rheology.md, docs/study.md). */
 #include <config.h>
 
 #include <math.h>
@@ -25,8 +25,7 @@ static const cli_option options[] = {
     {"I-windows", 0, "LO:HI,...", "inertial-number windows for the mean viscosity (default: "
                                   "those of Uhlig 2012, Table 4.7)"},
     {"definition", 0, "general|luding", "general: tau, shear_rate (invariants; default); luding: "
-                                        "tau_phi, shear_rate_luding (Uhlig 2012, cylindrical "
-                                        "grids)"},
+                                        "tau_phi, shear_rate_luding (Uhlig 2012; cylindrical grids)"},
     {"plot", 0, "PREFIX", "draw PREFIX.yield.png, PREFIX.mu_I.png and PREFIX.eta.png (gnuplot); "
                           "with a study PREFIX.study.png"},
     {"output", 'o', "FILE", "write the table to FILE (default: standard output)"},
@@ -297,6 +296,10 @@ static int run(const cli_command *cmd, int argc, char **argv)
     if (!rc)
         rc = cli_study_begin(cmd, &a.study, (size_t)(argc - first),
                              "field file (mimas average -o FIELDS.h5)");
+    if (!rc)
+        rc = cli_refuse_input_as_output(cmd, a.output, NULL, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.plot, NULL, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.study.trends, NULL, argv + first, argc - first);
     if (rc) {
         cli_study_free(&a.study);
         return rc < 0 ? 0 : rc;
@@ -319,14 +322,14 @@ const cli_command cmd_rheology = {
     "tau = tau0 + zeta p with psi = asin(zeta), the mu(I) law mu = mu_s +\n"
     "(mu_2 - mu_s)/(1 + I0/I), the power laws eta = k shear_rate^n and\n"
     "eta = k I^n, and the mean viscosity in windows of shear rate and of I\n"
-    "(Uhlig 2012, Sec. 4.2; Jop et al. 2006).  Writes one long table, a row per\n"
-    "parameter or window: table parameter value error npts lo hi status.\n"
-    "With --study NAME (a run parameter the field files carry, such as\n"
-    "liquid_content) or --study-values, every field file is one run: the rows of\n"
-    "every run with a first column study, then the trends table: per row the\n"
-    "least-squares line value = A1 study + A2 over the runs and the percentage\n"
-    "changes between the lowest study values and to the highest\n"
-    "(docs/rheology.md, docs/study.md).",
+    "(docs/theory.md §7.2; Uhlig 2012, Sec. 4.2).  Writes one long table, a row per\n"
+    "parameter or window: table parameter value error npts lo hi status\n"
+    "(docs/rheology.md).  With --study NAME (a run parameter the field files\n"
+    "carry, such as liquid_content) or --study-values, every field file is one\n"
+    "run: the rows of every run with a first column study, then the trends table:\n"
+    "per row the least-squares line value = A1 study + A2 over the runs and the\n"
+    "percentage changes between the lowest study values and to the highest\n"
+    "(docs/study.md).",
     options,
     sizeof options / sizeof options[0],
     0,

@@ -1,6 +1,6 @@
 /* mimas shearband: the shear band's centre and width per height layer
  * from erf fits of the angular velocity profile, of one run or of the runs
- * of a study (docs/shearband.md, docs/study.md). */
+ * of a study (docs/theory.md §7.1, docs/shearband.md, docs/study.md). */
 #include <config.h>
 
 #include <math.h>
@@ -401,6 +401,10 @@ static int run(const cli_command *cmd, int argc, char **argv)
         rc = cli_study_begin(cmd, &a.study, (size_t)(argc - first), NULL);
     if (!rc && a.has_layer && !cli_study_on(&a.study))
         rc = cli_fail(cmd, 1, "--layer needs --study or --study-values");
+    if (!rc)
+        rc = cli_refuse_input_as_output(cmd, a.output, &in, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.plot, &in, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.study.trends, &in, argv + first, argc - first);
     mimas_error err;
     int status = MIMAS_OK;
     if (!rc)
@@ -427,15 +431,15 @@ const cli_command cmd_shearband = {
     "file of mimas average (omega, or v_phi/r) by omega(r)/OMEGA = 0.5 + 0.5\n"
     "erf((r - Rc)/W) (--model 2) or A + B erf((r - Rc)/W) (--model 4) with GSL's\n"
     "trust-region least squares, weighted by the standard errors when the file\n"
-    "has them (Fenistein & van Hecke 2003).  Raw particle input is first averaged\n"
-    "with bins on an r-z grid chosen from the data (the grid is said on standard\n"
-    "error).  Writes one row per layer: z Rc Rc_err W W_err chi2 npts [A A_err B\n"
-    "B_err] [Rc_fenistein] status; a layer that could not be fitted has nan\n"
-    "values and the status few_points, no_convergence or undetermined.  With\n"
-    "--study NAME or --study-values every input (a field file, or one particle\n"
-    "input) is one run: the layers of every run with a first column study, then\n"
-    "the trends of Rc and W of the surface layer (or --layer Z) against the study\n"
-    "variable (docs/shearband.md, docs/study.md).",
+    "has them (docs/theory.md §7.1).  Raw particle input is first averaged with bins on an\n"
+    "r-z grid chosen from the data (the grid is said on standard error).  Writes\n"
+    "one row per layer: z Rc Rc_err W W_err chi2 npts [A A_err B B_err]\n"
+    "[Rc_fenistein] status; a layer that could not be fitted has nan values and\n"
+    "the status few_points, no_convergence or undetermined (docs/shearband.md).\n"
+    "With --study NAME or --study-values every input (a field file, or one\n"
+    "particle input) is one run: the layers of every run with a first column\n"
+    "study, then the trends of Rc and W of the surface layer (or --layer Z)\n"
+    "against the study variable (docs/study.md).",
     options,
     sizeof options / sizeof options[0],
     1,

@@ -25,6 +25,7 @@ static const cli_option options[] = {
                                   "pulloff, plugtube) with every default, and exit"},
     {"quiet", 'q', NULL, "no progress line"},
     {"list-keys", 0, NULL, "print every scenario key with its unit and meaning (Markdown) and exit"},
+    {"force", 0, NULL, "replace an existing RUN.h5 (without it, an existing output is refused)"},
 };
 
 typedef struct simulate_args {
@@ -32,7 +33,7 @@ typedef struct simulate_args {
     const char *output, *defaults;
     int threads;
     long stop_at;
-    int resume, quiet, list_keys;
+    int resume, quiet, list_keys, force;
 } simulate_args;
 
 static int on_option(void *ctx, size_t opt, const char *arg)
@@ -48,7 +49,8 @@ static int on_option(void *ctx, size_t opt, const char *arg)
         return 0;
     case 4: a->defaults = arg; return 0;
     case 5: a->quiet = 1; return 0;
-    default: a->list_keys = 1; return 0;
+    case 6: a->list_keys = 1; return 0;
+    default: a->force = 1; return 0;
     }
 }
 
@@ -90,6 +92,11 @@ static int run(const cli_command *cmd, int argc, char **argv)
         return cli_fail(cmd, 1, "needs one scenario file (see --print-defaults)");
     if (!a.output)
         return cli_fail(cmd, 1, "needs -o RUN.h5");
+    if (cli_refuse_input_as_output(cmd, a.output, NULL, argv + first, 1))
+        return 1;
+    if (!a.resume && !a.force && access(a.output, F_OK) == 0)
+        return cli_fail(cmd, 1, "%s exists: give --force to replace it (or --resume to continue "
+                        "its run)", a.output);
 #ifdef _OPENMP
     if (a.threads > 0)
         omp_set_num_threads(a.threads);
@@ -100,7 +107,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
         return cli_fail(cmd, mimas_exit_status(rc), "%s", err.msg);
     char *line = cli_command_line(argc, argv);
     int tty = !a.quiet && isatty(STDERR_FILENO);
-    sim_run_options o = {a.output, a.resume, a.stop_at, line, tty ? show_progress : NULL, NULL};
+    sim_run_options o = {a.output, a.resume, a.stop_at, line, tty ? show_progress : NULL, NULL,
+                         argv[first]};
     rc = sim_run(&sc, &o, &err);
     if (tty)
         fputc('\n', stderr);
@@ -122,9 +130,17 @@ const cli_command cmd_simulate = {
     "tangential parts, overlap, liquid-bridge volume) in the native format; a\n"
     "plugtube run also writes the tube and its gas fields (pressure, porosity,\n"
     "superficial gas velocity) and feeds and removes grains (docs/plugconveying.md).\n"
-    "Each frame is flushed when written, so a killed run leaves a file readable up\n"
-    "to its last complete frame.  A checkpoint (RUN.h5.ckpt) is written with every\n"
-    "frame; --resume continues from it, bit for bit as if the run had not stopped.\n"
+    "The scenario is checked and the initial state built before RUN.h5 is\n"
+    "created; an existing RUN.h5 is refused unless --force (or --resume) is given.\n"
+    "RUN.h5 is readable from the moment it exists (zero frames at first); each\n"
+    "frame is flushed when written, so a killed run leaves a file readable up to\n"
+    "its last complete frame.  A run whose state blows up (values that are not\n"
+    "finite, a particle moving more than its radius per step or leaving the\n"
+    "domain, overlaps beyond the smaller radius) stops with a message naming the\n"
+    "step, the particle and the likely cause; its frames so far stay readable.\n"
+    "A checkpoint (RUN.h5.ckpt) is written with the first frame, then with a frame\n"
+    "at most once a minute (or every checkpoint_every steps), at --stop-at and at\n"
+    "the end; --resume continues from it, bit for bit as if the run had not stopped.\n"
     "Forces are computed with OpenMP; the results are identical for any number of\n"
     "threads.",
     options,

@@ -1,7 +1,9 @@
 /* mimas voronoi: per-particle Voronoi cells (voro++): volume, local solid
- * fraction, faces, surface flags and per-particle stress (PHYSICS 6, 002
- * Sec. 2.2 and eq. 3.8). */
+ * fraction, faces, surface flags and per-particle stress (docs/theory.md §6;
+ * Bierwisch 2009, Sec. 2.2 and eq. 3.8). */
 #include <config.h>
+
+#include <errno.h>
 
 #include <math.h>
 #include <stdint.h>
@@ -130,12 +132,15 @@ static int write_rows(const mimas_voronoi *v, const mimas_frame *f, cli_table *t
             cli_table_double(t, val.stress ? val.stress[9 * k + (size_t)m] : NAN);
         cli_table_row_end(t);
     }
-    return ferror(t->fp) ? mimas_error_set(err, MIMAS_EIO, "cannot write the table") : MIMAS_OK;
+    return ferror(t->fp) ? mimas_error_set(err, MIMAS_EIO, "cannot write the table: %s",
+                                           strerror(errno))
+                         : MIMAS_OK;
 }
 
 /* ---- one frame's result, written on rank 0 in frame order ---- */
 typedef struct voronoi_sink {
     FILE *out;          /* the table, or NULL */
+    const char *out_name;   /* its name in messages */
     mimas_writer *w;    /* -o, or NULL */
     mimas_frame frame;  /* a frame unpacked from a result */
 } voronoi_sink;
@@ -203,7 +208,8 @@ static int write_frame(void *ctx, size_t position, const unsigned char *data, si
     if (len > n - sizeof len)
         return mimas_error_set(err, MIMAS_EDATA, "a per-frame result is truncated");
     if (s->out && len && fwrite(data + sizeof len, 1, len, s->out) != len)
-        return mimas_error_set(err, MIMAS_EIO, "cannot write the table");
+        return mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table: %s", s->out_name,
+                               strerror(errno));
     if (!s->w)
         return MIMAS_OK;
     size_t at = sizeof len + (size_t)len;
@@ -221,6 +227,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
     cli_inputs in = {0};
     int first;
     int rc = cli_parse(cmd, argc, argv, on_option, &a, &in, &first);
+    if (!rc)
+        rc = cli_refuse_input_as_output(cmd, a.output, &in, argv + first, argc - first) ||
+             cli_refuse_input_as_output(cmd, a.tsv, &in, argv + first, argc - first);
     mimas_reader *r = NULL;
     if (!rc)
         rc = cli_open_inputs(cmd, &in, argc, argv, first, &r);
@@ -246,7 +255,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
     cli_table_start(&tw, out, &a.table);
     if (out)
         write_header(&tw);
-    voronoi_sink sink = {out, NULL, {0}};
+    voronoi_sink sink = {out, a.tsv && strcmp(a.tsv, "-") ? a.tsv : "standard output", NULL,
+                         {0}};
     mimas_frame_init(&sink.frame);
     char *provenance = cli_command_line(argc, argv);
     if (!status && root && a.output) {

@@ -1,6 +1,6 @@
 /* mimas error reporting: the library never prints or exits; it fills a
  * mimas_error and returns its code.  The front end prints the message and
- * maps the code to an exit status (DESIGN.md "Command line"). */
+ * maps the code to an exit status (exit status 0, 1 for bad usage, 2 for bad data). */
 #ifndef MIMAS_ERROR_H
 #define MIMAS_ERROR_H
 
@@ -17,7 +17,8 @@ enum mimas_status {
     MIMAS_END = 5       /* not an error: a stream has no more frames */
 };
 
-#define MIMAS_ERROR_MSG_MAX 512
+/* room for two file names of PATH_MAX and the problem: a message is never cut */
+#define MIMAS_ERROR_MSG_MAX 9216
 
 typedef struct mimas_error {
     int code;                        /* enum mimas_status */

@@ -171,6 +171,9 @@ int mimas_table_resize(void *tab, const mimas_table_desc *d, size_t n, mimas_err
     return MIMAS_OK;
 }
 
+static int append_extra(void *tab, const mimas_table_desc *d, const char *name, int ncomp,
+                        size_t *index, mimas_error *err);
+
 int mimas_table_add_extra(void *tab, const mimas_table_desc *d, const char *name, int ncomp,
                           size_t *index, mimas_error *err)
 {
@@ -187,14 +190,33 @@ int mimas_table_add_extra(void *tab, const mimas_table_desc *d, const char *name
             return MIMAS_OK;
         }
     }
+    return append_extra(tab, d, name, ncomp, index, err);
+}
+
+int mimas_table_add_new_extra(void *tab, const mimas_table_desc *d, const char *name, int ncomp,
+                              mimas_error *err)
+{
+    return append_extra(tab, d, name, ncomp, NULL, err);
+}
+
+static int append_extra(void *tab, const mimas_table_desc *d, const char *name, int ncomp,
+                        size_t *index, mimas_error *err)
+{
+    size_t *n_extra = MEMBER(tab, d->off_n_extra, size_t);
+    mimas_extra **extra = MEMBER(tab, d->off_extra, mimas_extra *);
     if (mimas_table_find(d, name))
         return mimas_error_set(err, MIMAS_EDATA, "'%s' is a standard %s quantity, not an extra",
                                name, d->name);
     if (ncomp < 1)
         return mimas_error_set(err, MIMAS_EUSAGE, "extra column '%s' needs components", name);
-    int rc = grow((void **)extra, (*n_extra + 1) * sizeof **extra, err);
-    if (rc)
-        return rc;
+    /* the array doubles at 4, 8, 16, ... columns (its capacity is not stored:
+     * it follows from the count), so many columns take linear time */
+    size_t n = *n_extra;
+    if (n == 0 || (n >= 4 && (n & (n - 1)) == 0)) {
+        int rc = grow((void **)extra, (n ? 2 * n : 4) * sizeof **extra, err);
+        if (rc)
+            return rc;
+    }
     mimas_extra *x = &(*extra)[*n_extra];
     x->name = strdup(name);
     x->ncomp = ncomp;
@@ -204,7 +226,7 @@ int mimas_table_add_extra(void *tab, const mimas_table_desc *d, const char *name
     if (!x->name || grow((void **)&x->data, cap * (size_t)ncomp * sizeof(double), err)) {
         free(x->name);
         free(x->data);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for a frame column");
     }
     if (index)
         *index = *n_extra;

@@ -1,4 +1,4 @@
-/* The mimas data model (DESIGN.md "Data model"): a frame is one snapshot with
+/* The mimas data model (docs/format.md and docs/api.md): a frame is one snapshot with
  * its box, particles, particle-particle contacts and particle-wall contacts.
  *
  * Each of the three tables is a struct of arrays, sized per frame and owned by
@@ -64,7 +64,7 @@ typedef struct mimas_particles {
     double (*omega)[3];        /* angular velocity */
     double (*force)[3];
     int32_t (*image)[3];       /* periodic image flags */
-    double *cg;                /* coarse-grain factor alpha (PHYSICS 2.5) */
+    double *cg;                /* coarse-grain factor alpha (docs/theory.md §2.5) */
     double *liquid;            /* liquid content: volume of liquid carried */
     size_t n_extra;
     mimas_extra *extra;
@@ -82,7 +82,7 @@ typedef struct mimas_contacts {
     unsigned present;
     size_t *i, *j;             /* indices into the particle arrays */
     double (*point)[3];        /* contact point */
-    double (*force)[3];        /* force on i exerted by j (PHYSICS 1) */
+    double (*force)[3];        /* force on i exerted by j (docs/theory.md §1) */
     double (*force_n)[3];      /* its normal part */
     double (*force_t)[3];      /* its tangential part */
     double *overlap;           /* R_i + R_j - |r_i - r_j| */
@@ -136,7 +136,7 @@ int mimas_box_is_triclinic(const mimas_box *b);
 double mimas_box_volume(const mimas_box *b);
 /* Rows are the edge vectors a, b, c. */
 void mimas_box_edges(const mimas_box *b, double e[3][3]);
-/* Replaces d by its minimum image along the periodic directions (PHYSICS 1),
+/* Replaces d by its minimum image along the periodic directions (docs/theory.md §1),
  * for orthogonal and triclinic boxes (LAMMPS' convention: the nearest image
  * in fractional coordinates). */
 void mimas_box_min_image(const mimas_box *b, double d[3]);
@@ -212,6 +212,10 @@ int mimas_table_resize(void *tab, const mimas_table_desc *d, size_t n, mimas_err
 /* Adds (or finds) an extra column of ncomp doubles; returns its index in *index. */
 int mimas_table_add_extra(void *tab, const mimas_table_desc *d, const char *name,
                           int ncomp, size_t *index, mimas_error *err);
+/* The same for a name the caller knows the table does not have yet (no
+ * search: adding many columns takes linear time). */
+int mimas_table_add_new_extra(void *tab, const mimas_table_desc *d, const char *name, int ncomp,
+                              mimas_error *err);
 void mimas_table_free(void *tab, const mimas_table_desc *d);
 /* Frees the optional quantities not in bits (required ones always stay). */
 void mimas_table_keep_only(void *tab, const mimas_table_desc *d, unsigned bits);
@@ -220,6 +224,23 @@ void mimas_table_drop_extras(void *tab, const mimas_table_desc *d);
  * message such as "contacts have no contact_point". */
 int mimas_table_require(const void *tab, const mimas_table_desc *d, unsigned bits,
                         mimas_error *err);
+
+/* ---- validation (src/frame_check.c): what every reader applies ---- */
+/* MIMAS_EDATA unless the box bounds are finite and increasing and its tilts
+ * finite. */
+int mimas_box_check(const mimas_box *b, mimas_error *err);
+/* MIMAS_EDATA with a message naming the particle or contact row unless every
+ * standard quantity of the frame is usable: finite positions, velocities,
+ * angular velocities, forces and contact vectors; positive radii, masses and
+ * coarse-grain factors; liquid volumes >= 0; contact indices inside the
+ * particle table; a time that is finite or NaN (unknown).  Extra columns are
+ * not checked (NaN marks a value that is undefined there). */
+int mimas_frame_check(const mimas_frame *f, mimas_error *err);
+/* Moves positions outside the box along its periodic directions into it by
+ * whole edge vectors, adding the shifts to the image flags when the frame has
+ * them (the unwrapped position stays the same).  MIMAS_EDATA for a position
+ * more than 1e9 box lengths away. */
+int mimas_frame_wrap(mimas_frame *f, mimas_error *err);
 
 #ifdef __cplusplus
 }

@@ -42,6 +42,19 @@ void h5_error_text(char *buf, size_t len)
     buf[0] = '\0';
     err_sink s = {buf, len};
     H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, take_desc, &s);
+    /* a failed write reads "file write failed: time = ..., errno = 28,
+     * error message = 'No space left on device', ..." over several lines:
+     * keep its first words and the system's message, on one line */
+    const char *m = strstr(buf, "error message = '");
+    if (m) {
+        const char *from = m + strlen("error message = '"), *to = strchr(from, '\'');
+        size_t head = strcspn(buf, ":\n");
+        char text[256];
+        snprintf(text, sizeof text, "%.*s: %.*s", (int)head, buf,
+                 (int)(to ? (size_t)(to - from) : strlen(from)), from);
+        snprintf(buf, len, "%s", text);
+    }
+    buf[strcspn(buf, "\n")] = '\0';
 }
 
 static int write_attr(hid_t obj, const char *name, hid_t type, hid_t space, const void *buf)

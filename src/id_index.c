@@ -33,7 +33,7 @@ static int build_sorted(mimas_id_index *x, const int64_t *ids, size_t n, mimas_e
 {
     id_pair *p = malloc((n ? n : 1) * sizeof *p);
     if (!p)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the particle id index");
     for (size_t k = 0; k < n; k++)
         p[k] = (id_pair){ids[k], k};
     qsort(p, n, sizeof *p, cmp_pair);
@@ -46,7 +46,7 @@ static int build_sorted(mimas_id_index *x, const int64_t *ids, size_t n, mimas_e
             x->idx = nx;
         if (!ni || !nx) {
             free(p);
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the particle id index");
         }
         x->cap_sorted = n;
     }
@@ -86,7 +86,7 @@ int mimas_id_index_build(mimas_id_index *x, const int64_t *ids, size_t n, mimas_
     if (span > x->cap_dense) {
         size_t *d = realloc(x->dense, (size_t)span * sizeof *d);
         if (!d)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the particle id index");
         x->dense = d;
         x->cap_dense = (size_t)span;
     }

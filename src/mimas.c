@@ -2,6 +2,7 @@
  * declarations (src/cmd_*.c); everything else lives in libmimas. */
 #include <config.h>
 
+#include <errno.h>
 #include <gsl/gsl_errno.h>
 #include <stdio.h>
 #include <string.h>
@@ -85,6 +86,7 @@ static int dispatch(int argc, char **argv)
     /* the library checks GSL's return codes (a fit that fails has a status);
      * GSL's default handler would abort the program instead */
     gsl_set_error_handler_off();
+    cli_start(argc, argv);
     if (argc < 2) {
         usage(stderr);
         return 1;
@@ -132,11 +134,19 @@ static int dispatch(int argc, char **argv)
         fprintf(stderr, "mimas: unknown command '%s' (see mimas help)\n", name);
         return 1;
     }
-    if (mimas_par_size() == 1 || frame_parallel(c->name))
-        return c->run(c, argc - 1, argv + 1);
-    /* under mpirun, a command that is not frame-parallel runs on rank 0 alone;
-     * the other ranks end with its exit status */
-    int status = mimas_par_rank() == 0 ? c->run(c, argc - 1, argv + 1) : 0;
-    mimas_par_share(MIMAS_OK, &status, sizeof status, NULL);
-    return status;
+    int rc;
+    if (mimas_par_size() == 1 || frame_parallel(c->name)) {
+        rc = c->run(c, argc - 1, argv + 1);
+    } else {
+        /* under mpirun, a command that is not frame-parallel runs on rank 0
+         * alone; the other ranks end with its exit status */
+        rc = mimas_par_rank() == 0 ? c->run(c, argc - 1, argv + 1) : 0;
+        mimas_par_share(MIMAS_OK, &rc, sizeof rc, NULL);
+    }
+    /* what went to standard output must have arrived (a full disk, /dev/full) */
+    errno = 0;
+    if ((fflush(stdout) != 0 || ferror(stdout)) && rc == 0)
+        rc = cli_fail(c, 2, "cannot write to standard output: %s",
+                      errno ? strerror(errno) : "write error");
+    return rc;
 }

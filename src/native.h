@@ -33,10 +33,15 @@ void mimas_writer_options_default(mimas_writer_options *o);
 /* Creates (truncates) the file.  With atomic, nothing appears at path until close. */
 int mimas_writer_open(mimas_writer **w, const char *path, const mimas_writer_options *o,
                       mimas_error *err);
-/* Appends one frame and flushes it: after this returns, a crash leaves a file
- * that reads back every appended frame.  Every frame must carry the same set
- * of quantities as the first. */
+/* Appends one frame.  Frames are committed (flushed) in batches: the first
+ * at once, later ones when the frames since the last commit hold about as
+ * much data as a commit writes of metadata, or a second after the last
+ * commit, so the cost of a frame is proportional to its size.  A crash
+ * leaves a file that reads back every committed frame.  Every frame must
+ * carry the same set of quantities as the first. */
 int mimas_writer_append(mimas_writer *w, const mimas_frame *f, mimas_error *err);
+/* Commits the frames appended so far now. */
+int mimas_writer_flush(mimas_writer *w, mimas_error *err);
 /* Number of frames appended so far. */
 size_t mimas_writer_frames(const mimas_writer *w);
 /* Closes the file (renaming it into place in atomic mode) and frees w. */
@@ -46,7 +51,8 @@ void mimas_writer_abort(mimas_writer *w);
 
 /* Run parameters and per-frame observables (docs/format.md). */
 /* Writes the parameters as the attributes of /parameters/GROUP (once per
- * group; "scenario" for the keys of mimas simulate's scenario file). */
+ * group, before the first frame; "scenario" for the keys of mimas
+ * simulate's scenario file). */
 int mimas_writer_parameters(mimas_writer *w, const char *group, const mimas_parameters *ps,
                             mimas_error *err);
 /* A scalar per frame, the H5MD observable /observables/all/NAME. */

@@ -17,13 +17,16 @@
 
 #include "native.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "h5util.h"
 #include "native_layout.h"
+#include "tmpfiles.h"
 #include "xdmf.h"
 #include "outfile.h"
 #include "parameters_h5.h"
@@ -38,7 +41,7 @@ typedef struct flat_table {
     const char *group;
     hid_t step, time, offset;
     hsize_t rows;          /* rows committed so far over all frames */
-    hsize_t staged_rows;   /* rows including the staged frame's */
+    hsize_t staged_rows;   /* rows including the staged frames' */
     size_t ncols;
     native_col *cols;
 } flat_table;
@@ -46,13 +49,21 @@ typedef struct flat_table {
 struct mimas_writer {
     char *path;            /* final name */
     char *open_path;       /* name being written (temporary in atomic mode) */
+    int tmp_slot;          /* open_path in the temporary-file registry, or -1 */
+    int unpublished;       /* not atomic: the final name holds a file of zero frames until
+                              the first commit renames open_path over it */
     mimas_writer_options opt;
     hid_t file;
     size_t frames;
     int swmr;              /* the file is in SWMR writing mode */
-    /* the frame staged and not yet committed: its step, time, particle count */
-    int64_t staged_step, staged_n;
-    double staged_time;
+    /* the frames staged and not yet committed (frames committed .. frames-1):
+     * the per-frame index their commit writes */
+    struct staged_frame {
+        int64_t step, n;
+        double time;
+        hsize_t end[2];    /* rows of the contact tables after the frame */
+    } *staged;
+    size_t nstaged, staged_cap;
     /* frame layout, fixed by the first frame */
     int started;
     int triclinic;
@@ -83,7 +94,25 @@ struct mimas_writer {
         hid_t *ds;            /* created with the first frame */
         int pending;          /* values set for the next frame */
     } obs;
+    /* commits: frames 0 .. committed-1 are on disk for good */
+    size_t committed;
+    double staged_bytes;   /* data of the frames staged since the last commit */
+    double last_commit;    /* monotonic seconds */
 };
+
+/* A commit (flush) rewrites the metadata of every dataset, at the end of
+ * the file: it is worth it once the frames since the last one hold about as
+ * much data, or once COMMIT_SECONDS have passed.  A crash loses at most the
+ * frames of the last COMMIT_SECONDS. */
+#define COMMIT_SECONDS 1.0
+#define COMMIT_BYTES_PER_DATASET 4096.0
+
+static double seconds_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
 
 void mimas_writer_options_default(mimas_writer_options *o)
 {
@@ -99,38 +128,10 @@ static int h5fail(mimas_writer *w, mimas_error *err, const char *what)
                            text[0] ? ": " : "", text);
 }
 
-int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_options *o,
-                      mimas_error *err)
+/* Creates name with the H5MD and mimas headers, flushed; returns the open
+ * file, or H5I_INVALID_HID with err set. */
+static hid_t create_with_header(mimas_writer *w, const char *name, mimas_error *err)
 {
-    *out = NULL;
-    if (o && o->atomic && mimas_output_check(path, err))
-        return err->code;
-    mimas_writer *w = calloc(1, sizeof *w);
-    if (!w)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
-    if (o)
-        w->opt = *o;
-    else
-        mimas_writer_options_default(&w->opt);
-    if (w->opt.deflate < 0 || w->opt.deflate > 9) {
-        int level = w->opt.deflate;
-        free(w);
-        return mimas_error_set(err, MIMAS_EUSAGE, "compression level %d is not in 0..9", level);
-    }
-    w->path = strdup(path);
-    size_t len = strlen(path) + 32;
-    w->open_path = malloc(len);
-    if (!w->path || !w->open_path) {
-        free(w->path);
-        free(w->open_path);
-        free(w);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
-    }
-    if (w->opt.atomic)
-        snprintf(w->open_path, len, "%s.tmp%ld", path, (long)getpid());
-    else
-        snprintf(w->open_path, len, "%s", path);
-
     h5_quiet q;
     h5_quiet_begin(&q);
     hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
@@ -141,21 +142,21 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
     H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
     /* SWMR needs the HDF5 1.10 file format (and no newer: 1.10 reads it) */
     H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110);
-    w->file = H5Fcreate(w->open_path, H5F_ACC_TRUNC, fcpl, fapl);
+    hid_t file = H5Fcreate(name, H5F_ACC_TRUNC, fcpl, fapl);
     H5Pclose(fapl);
     H5Pclose(fcpl);
     int rc = MIMAS_OK;
-    if (w->file < 0) {
+    if (file < 0) {
         rc = h5fail(w, err, "create the file");
     } else {
         /* H5MD metadata */
         int version[2] = {1, 1};
         int fmt[2] = {MIMAS_NATIVE_VERSION_MAJOR, MIMAS_NATIVE_VERSION_MINOR};
         const char *author = w->opt.author ? w->opt.author : getenv("USER");
-        hid_t g = H5Gcreate2(w->file, "/h5md", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        hid_t g = H5Gcreate2(file, "/h5md", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
         hid_t ga = H5Gcreate2(g, "author", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
         hid_t gc = H5Gcreate2(g, "creator", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-        hid_t gm = H5Gcreate2(w->file, NATIVE_MIMAS, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        hid_t gm = H5Gcreate2(file, NATIVE_MIMAS, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
         /* the H5MD units module: every unit attribute is an SI unit string */
         hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
         H5Pset_create_intermediate_group(lcpl, 1);
@@ -178,10 +179,71 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
         H5Gclose(gc);
         H5Gclose(ga);
         H5Gclose(g);
-        if (!rc && H5Fflush(w->file, H5F_SCOPE_LOCAL) < 0)
+        if (!rc && H5Fflush(file, H5F_SCOPE_LOCAL) < 0)
             rc = h5fail(w, err, "flush");
     }
     h5_quiet_end(&q);
+    if (rc && file >= 0) {
+        H5Fclose(file);
+        file = H5I_INVALID_HID;
+    }
+    return rc ? H5I_INVALID_HID : file;
+}
+
+int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_options *o,
+                      mimas_error *err)
+{
+    *out = NULL;
+    /* the file is renamed into place: never onto a device or a pipe */
+    if (mimas_output_check(path, err))
+        return err ? err->code : MIMAS_EUSAGE;
+    mimas_writer *w = calloc(1, sizeof *w);
+    if (!w)
+        return mimas_error_set(err, MIMAS_EIO, "%s: out of memory for the writer", path);
+    w->tmp_slot = -1;
+    if (o)
+        w->opt = *o;
+    else
+        mimas_writer_options_default(&w->opt);
+    if (w->opt.deflate < 0 || w->opt.deflate > 9) {
+        int level = w->opt.deflate;
+        free(w);
+        return mimas_error_set(err, MIMAS_EUSAGE, "compression level %d is not in 0..9", level);
+    }
+    w->path = strdup(path);
+    size_t len = strlen(path) + 32;
+    w->open_path = malloc(len);
+    if (!w->path || !w->open_path) {
+        free(w->path);
+        free(w->open_path);
+        free(w);
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the native writer");
+    }
+    /* the file is written under a temporary name.  Without atomic, a file of
+     * zero frames (the header alone, closed: clean) takes the final name at
+     * once, and the file being written replaces it when its first frame is
+     * committed (the file then in SWMR mode): the final name always holds a
+     * file that reads, also after a kill at any moment */
+    mimas_tmpfile_name(w->open_path, len, path);
+    w->tmp_slot = mimas_tmpfile_add(w->open_path);
+    int rc = MIMAS_OK;
+    if (!w->opt.atomic) {
+        hid_t zero = create_with_header(w, w->open_path, err);
+        if (zero < 0)
+            rc = err ? err->code : MIMAS_EIO;
+        else if (H5Fclose(zero) < 0)
+            rc = h5fail(w, err, "close the file");
+        else if (rename(w->open_path, w->path) != 0)
+            rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot create it: %s", w->path,
+                                 strerror(errno));
+        else
+            w->unpublished = 1;
+    }
+    if (!rc) {
+        w->file = create_with_header(w, w->open_path, err);
+        if (w->file < 0)
+            rc = err ? err->code : MIMAS_EIO;
+    }
     if (rc) {
         mimas_writer_abort(w);
         return rc;
@@ -249,7 +311,7 @@ static int create_particles(mimas_writer *w, const mimas_frame *f, mimas_error *
 
     w->pcols = calloc(mimas_particles_desc.ncolumns + p->n_extra, sizeof *w->pcols);
     if (!w->pcols)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the native writer");
     w->npcols = native_cols_of(p, &mimas_particles_desc, w->pcols);
     w->nmax = 0;
     hsize_t cn = p->n < 256 ? 256 : (p->n > PARTICLE_CHUNK_MAX ? PARTICLE_CHUNK_MAX : p->n);
@@ -390,7 +452,7 @@ static int create_flat(mimas_writer *w, flat_table *t, const void *tab, mimas_er
     t->cols = calloc(t->desc->ncolumns + n_extra, sizeof *t->cols);
     if (!t->cols) {
         H5Gclose(g);
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the native writer");
     }
     t->ncols = native_cols_of(tab, t->desc, t->cols);
     for (size_t c = 0; c < t->ncols; c++) {
@@ -549,7 +611,7 @@ static int index_to_ids(mimas_writer *w, const size_t *idx, size_t n, const mima
     if (n > w->ids_cap) {
         int64_t *b = realloc(w->ids, n * sizeof *b);
         if (!b)
-            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the native writer");
         w->ids = b;
         w->ids_cap = n;
     }
@@ -592,9 +654,16 @@ static int stage_particles(mimas_writer *w, const mimas_frame *f, mimas_error *e
         H5Dset_extent(w->box_upper, ext) < 0 ||
         write_block(w->box_upper, H5T_NATIVE_DOUBLE, 2, start, count, f->box.hi) < 0)
         return h5fail(w, err, "write the box");
-    w->staged_step = f->step;
-    w->staged_time = f->time;
-    w->staged_n = n;
+    if (w->nstaged == w->staged_cap) {
+        size_t cap = w->staged_cap ? 2 * w->staged_cap : 16;
+        struct staged_frame *g = realloc(w->staged, cap * sizeof *g);
+        if (!g)
+            return mimas_error_set(err, MIMAS_EIO, "%s: out of memory for the frame index",
+                                   w->path);
+        w->staged = g;
+        w->staged_cap = cap;
+    }
+    w->staged[w->nstaged] = (struct staged_frame){f->step, n, f->time, {0, 0}};
     for (int g = 0; g < 3 && w->has_gas; g++) {
         const size_t *c = w->gas_cells;
         hsize_t gext[5] = {k + 1, c[2], c[1], c[0], 3}, gstart[5] = {k, 0, 0, 0, 0};
@@ -614,7 +683,7 @@ static int stage_flat(mimas_writer *w, flat_table *t, const void *tab, const mim
                       mimas_error *err)
 {
     size_t n = mimas_table_n(tab, t->desc);
-    hsize_t row0 = t->rows, end = t->rows + n;
+    hsize_t row0 = t->staged_rows, end = t->staged_rows + n;
     for (size_t c = 0; c < t->ncols; c++) {
         native_col *nc = &t->cols[c];
         int rank = nc->ncomp == 1 ? 1 : 2;
@@ -640,6 +709,10 @@ static int stage_flat(mimas_writer *w, flat_table *t, const void *tab, const mim
 int mimas_writer_parameters(mimas_writer *w, const char *group, const mimas_parameters *ps,
                             mimas_error *err)
 {
+    /* attributes cannot be created once the first commit switched to SWMR */
+    if (w->frames > 0)
+        return mimas_error_set(err, MIMAS_EUSAGE, "%s: the run parameters must be written "
+                               "before the first frame", w->path);
     h5_quiet q;
     h5_quiet_begin(&q);
     int rc = parameters_write_h5(w->file, group, ps) ? h5fail(w, err, "write the parameters")
@@ -731,31 +804,32 @@ static void release_observables(mimas_writer *w)
     memset(o, 0, sizeof *o);
 }
 
-/* The per-frame index of a flat table: what makes the staged frame's rows
- * visible. */
-static int index_flat(mimas_writer *w, flat_table *t, mimas_error *err)
+/* The per-frame index of a flat table for staged frame sf (frame k): what
+ * makes its rows visible. */
+static int index_flat(mimas_writer *w, flat_table *t, hsize_t k, const struct staged_frame *sf,
+                      int which, mimas_error *err)
 {
-    int64_t off = (int64_t)t->staged_rows;
-    if (append_scalar(t->offset, w->frames + 1, H5T_NATIVE_INT64, &off) < 0 ||
-        append_scalar(t->step, w->frames, H5T_NATIVE_INT64, &w->staged_step) < 0 ||
-        append_scalar(t->time, w->frames, H5T_NATIVE_DOUBLE, &w->staged_time) < 0)
+    int64_t off = (int64_t)sf->end[which];
+    if (append_scalar(t->offset, k + 1, H5T_NATIVE_INT64, &off) < 0 ||
+        append_scalar(t->step, k, H5T_NATIVE_INT64, &sf->step) < 0 ||
+        append_scalar(t->time, k, H5T_NATIVE_DOUBLE, &sf->time) < 0)
         return h5fail(w, err, "write the contact index");
-    t->rows = t->staged_rows;
+    t->rows = sf->end[which];
     return MIMAS_OK;
 }
 
-/* The particle count, step and time of the staged frame, then those of the
- * contact tables. */
-static int write_index(mimas_writer *w, mimas_error *err)
+/* The particle count, step and time of staged frame sf (frame k), then those
+ * of the contact tables. */
+static int write_index(mimas_writer *w, hsize_t k, const struct staged_frame *sf,
+                       mimas_error *err)
 {
-    hsize_t k = w->frames;
-    if (append_scalar(w->count, k, H5T_NATIVE_INT64, &w->staged_n) < 0 ||
-        append_scalar(w->clock_step, k, H5T_NATIVE_INT64, &w->staged_step) < 0 ||
-        append_scalar(w->clock_time, k, H5T_NATIVE_DOUBLE, &w->staged_time) < 0)
+    if (append_scalar(w->count, k, H5T_NATIVE_INT64, &sf->n) < 0 ||
+        append_scalar(w->clock_step, k, H5T_NATIVE_INT64, &sf->step) < 0 ||
+        append_scalar(w->clock_time, k, H5T_NATIVE_DOUBLE, &sf->time) < 0)
         return h5fail(w, err, "write the particle count, step and time");
-    int rc = w->has_contacts ? index_flat(w, &w->contacts, err) : MIMAS_OK;
+    int rc = w->has_contacts ? index_flat(w, &w->contacts, k, sf, 0, err) : MIMAS_OK;
     if (!rc && w->has_walls)
-        rc = index_flat(w, &w->walls, err);
+        rc = index_flat(w, &w->walls, k, sf, 1, err);
     return rc;
 }
 
@@ -786,7 +860,29 @@ int mimas_writer_stage(mimas_writer *w, const mimas_frame *f, mimas_error *err)
     if (rc && rc != MIMAS_EIO)
         mimas_error_prefix(err, "%s: frame %zu (step %lld)", w->path, w->frames,
                            (long long)f->step);
+    if (!rc) {
+        w->staged[w->nstaged].end[0] = w->contacts.staged_rows;
+        w->staged[w->nstaged].end[1] = w->walls.staged_rows;
+        w->nstaged++;
+        w->frames++;
+        w->staged_bytes += 24.0 * ((double)f->particles.n * (double)w->npcols +
+                                   (double)f->contacts.n * (double)w->contacts.ncols +
+                                   (double)f->walls.n * (double)w->walls.ncols);
+    }
     return rc;
+}
+
+/* The file being written takes the final name (over the file of zero frames). */
+static int publish(mimas_writer *w, mimas_error *err)
+{
+    if (rename(w->open_path, w->path) != 0)
+        return mimas_error_set(err, MIMAS_EIO, "%s: cannot rename the file into place: %s",
+                               w->path, strerror(errno));
+    snprintf(w->open_path, strlen(w->path) + 32, "%s", w->path);
+    mimas_tmpfile_forget(w->tmp_slot);
+    w->tmp_slot = -1;
+    w->unpublished = 0;
+    return MIMAS_OK;
 }
 
 int mimas_writer_commit(mimas_writer *w, mimas_error *err)
@@ -795,8 +891,8 @@ int mimas_writer_commit(mimas_writer *w, mimas_error *err)
     h5_quiet_begin(&q);
     /* the data first, then the index that makes the frame visible */
     int rc = H5Fflush(w->file, H5F_SCOPE_LOCAL) < 0 ? h5fail(w, err, "flush") : MIMAS_OK;
-    if (!rc)
-        rc = write_index(w, err);
+    for (size_t j = 0; !rc && j < w->nstaged; j++)
+        rc = write_index(w, (hsize_t)(w->committed + j), &w->staged[j], err);
     if (!rc && H5Fflush(w->file, H5F_SCOPE_LOCAL) < 0)
         rc = h5fail(w, err, "flush");
     /* every object exists now: from here on readers may follow the file */
@@ -807,15 +903,33 @@ int mimas_writer_commit(mimas_writer *w, mimas_error *err)
             w->swmr = 1;
     }
     h5_quiet_end(&q);
-    if (!rc)
-        w->frames++;
+    if (!rc && w->unpublished)
+        rc = publish(w, err);
+    if (!rc) {
+        w->committed = w->frames;
+        w->nstaged = 0;
+        w->staged_bytes = 0;
+        w->last_commit = seconds_now();
+    }
     return rc;
+}
+
+int mimas_writer_flush(mimas_writer *w, mimas_error *err)
+{
+    return w->committed < w->frames ? mimas_writer_commit(w, err) : MIMAS_OK;
 }
 
 int mimas_writer_append(mimas_writer *w, const mimas_frame *f, mimas_error *err)
 {
     int rc = mimas_writer_stage(w, f, err);
-    return rc ? rc : mimas_writer_commit(w, err);
+    if (rc)
+        return rc;
+    double datasets = (double)(w->npcols + 6 + (w->has_contacts ? w->contacts.ncols + 3 : 0) +
+                               (w->has_walls ? w->walls.ncols + 3 : 0));
+    if (w->committed == 0 || w->staged_bytes >= COMMIT_BYTES_PER_DATASET * datasets ||
+        seconds_now() - w->last_commit >= COMMIT_SECONDS)
+        rc = mimas_writer_commit(w, err);
+    return rc;
 }
 
 /* ---- closing ---- */
@@ -850,20 +964,25 @@ static herr_t release(mimas_writer *w)
     release_observables(w);
     herr_t rc = w->file > 0 ? H5Fclose(w->file) : 0;
     free(w->ids);
+    free(w->staged);
     return rc;
 }
 
 int mimas_writer_close(mimas_writer *w, mimas_error *err)
 {
+    /* the frames staged since the last commit get their index */
+    int rc = w->started ? mimas_writer_flush(w, err) : MIMAS_OK;
     h5_quiet q;
     h5_quiet_begin(&q);
-    int rc = release(w) < 0 ? h5fail(w, err, "close the file") : MIMAS_OK;
+    if (release(w) < 0 && !rc)
+        rc = h5fail(w, err, "close the file");
     h5_quiet_end(&q);
-    if (!rc && w->opt.atomic && rename(w->open_path, w->path) != 0)
+    if (!rc && (w->opt.atomic || w->unpublished) && rename(w->open_path, w->path) != 0)
         rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot rename the finished file into place",
                              w->path);
     if (rc)
         remove(w->open_path);
+    mimas_tmpfile_forget(w->tmp_slot);
     if (!rc && w->opt.xdmf) {
         /* the sidecar describes the finished file (a failure leaves no sidecar,
          * and the trajectory itself complete) */
@@ -886,6 +1005,9 @@ void mimas_writer_abort(mimas_writer *w)
     release(w);
     h5_quiet_end(&q);
     remove(w->open_path);
+    if (w->unpublished)
+        remove(w->path); /* the file of zero frames it put there */
+    mimas_tmpfile_forget(w->tmp_slot);
     free(w->path);
     free(w->open_path);
     free(w);

@@ -2,6 +2,7 @@
 
 #include "plot.h"
 #include "outfile.h"
+#include "tmpfiles.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -22,6 +23,7 @@ struct mimas_plot {
     char names[MAX_DATA][64];
     FILE *data[MAX_DATA];
     int ndata;
+    int slot;   /* tmp in the temporary-file registry (src/tmpfiles.h) */
 };
 
 void mimas_plot_quote(const char *s, char *buf, size_t len)
@@ -54,7 +56,7 @@ int mimas_plot_open(mimas_plot **out, const char *png, mimas_error *err)
         return err->code;
     mimas_plot *p = calloc(1, sizeof *p);
     if (!p)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the plot");
     const char *tmpdir = getenv("TMPDIR");
     snprintf(p->dir, sizeof p->dir, "%s/mimas-plot-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
     if (!mkdtemp(p->dir)) {
@@ -65,6 +67,7 @@ int mimas_plot_open(mimas_plot **out, const char *png, mimas_error *err)
     }
     snprintf(p->png, sizeof p->png, "%s", png);
     snprintf(p->tmp, sizeof p->tmp, "%s.tmp%ld.png", png, (long)getpid());
+    p->slot = mimas_tmpfile_add(p->tmp);
     *out = p;
     return MIMAS_OK;
 }
@@ -123,6 +126,7 @@ void mimas_plot_abort(mimas_plot *p)
         return;
     clear_scratch(p);
     remove(p->tmp);
+    mimas_tmpfile_forget(p->slot);
     free(p);
 }
 

@@ -16,7 +16,9 @@ r_in=0.005 r_split=0.025 r_out=0.035 height=0.012 omega=0.5
 from=0.75
 
 echo "== 1/4 simulate: $here/ringshear.ini (about 6,500 particles, 1.75 s)"
-"$MIMAS" simulate "$here/ringshear.ini" -o "$out/run.h5" --threads "${THREADS:-2}"
+# --force: a second run of the example replaces the first one's output;
+# THREADS=N picks the thread count (default: OpenMP's, all cores)
+"$MIMAS" simulate "$here/ringshear.ini" -o "$out/run.h5" --force ${THREADS:+--threads "$THREADS"}
 echo "== 2/4 average: r-z bins of 2 mm, t >= $from s, glued bottom particles (type 2) left out"
 "$MIMAS" average "$out/run.h5" --grid r=$r_in:$r_out:15,z=0.002:$height:5 --weight bins \
     --from $from --exclude-types 2 --errors -q -o "$out/fields.h5" --tsv "$out/fields.tsv"

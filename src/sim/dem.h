@@ -13,6 +13,9 @@
 #include "scenario.h"
 
 #define DEM_MAX_WALLS 8
+/* Systems smaller than this run their loops on one thread: waking the
+ * others would cost more than the work (a loaded machine makes it worse). */
+#define DEM_PARALLEL_MIN 1000
 
 enum { DEM_WALL_PLANE = 0, DEM_WALL_CYLINDER = 1 };
 
@@ -128,6 +131,9 @@ struct dem_system {
     int64_t last_id;                   /* ids are never reused: the next is last_id + 1 */
     int64_t force_step;                /* the step whose positions dem_forces works on */
     dem_hooks hooks;
+    /* the region a run stays in (the box of its frames), for dem_check_state */
+    int has_domain;
+    double domain_lo[3], domain_hi[3];
 };
 
 void dem_init(dem_system *s);
@@ -180,6 +186,12 @@ int dem_energies(const dem_system *s, dem_energy *e, mimas_error *err);
  * int_s^s_c F(s') ds' (0 for s >= s_c), by 20-point Gauss-Legendre
  * quadrature; table is a gsl_integration_glfixed_table of 20 points or NULL. */
 double dem_bridge_energy(const mimas_bridge *b, double r_p, double s, const void *table);
+/* Blow-up detection (blowup.c): MIMAS_EDATA naming the step, the particle
+ * and the likely cause when the state is no longer physical: a position,
+ * velocity or angular velocity that is not finite, a particle that moves
+ * more than its radius in one step, one that left the domain by more than
+ * the domain's size, an overlap larger than the smaller radius. */
+int dem_check_state(const dem_system *s, mimas_error *err);
 
 /* One velocity-Verlet step (integrate.c). */
 int dem_step(dem_system *s, mimas_error *err);

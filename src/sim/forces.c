@@ -26,7 +26,7 @@ static double pair_overlap(const dem_system *s, size_t i, size_t j, double d[3],
 static void update_bridges(dem_system *s)
 {
     dem_nlist *nl = &s->nl;
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (s->n >= DEM_PARALLEL_MIN)
     for (size_t i = 0; i < s->n; i++)
         for (size_t k = nl->start[i]; k < nl->start[i + 1]; k++) {
             dem_entry *e = &nl->e[k];
@@ -44,7 +44,7 @@ static void update_bridges(dem_system *s)
                 nl->bv[k] = 0;
             }
         }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (s->n >= DEM_PARALLEL_MIN)
     for (size_t i = 0; i < s->n; i++) {
         int32_t c = 0;
         for (size_t k = nl->start[i]; k < nl->start[i + 1]; k++)
@@ -59,7 +59,7 @@ static void pair_forces(dem_system *s)
 {
     dem_nlist *nl = &s->nl;
     const double dt = s->dt;
-#pragma omp parallel for schedule(dynamic, 128)
+#pragma omp parallel for schedule(dynamic, 128) if (s->n >= DEM_PARALLEL_MIN)
     for (size_t i = 0; i < s->n; i++) {
         /* the forces on i are summed here, those on its partners go to their slots */
         double fi[3] = {0, 0, 0}, ti[3] = {0, 0, 0};
@@ -210,7 +210,7 @@ void dem_forces(dem_system *s)
     if (s->bridges_on)
         update_bridges(s);
     pair_forces(s);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (s->n >= DEM_PARALLEL_MIN)
     for (size_t i = 0; i < s->n; i++) {
         double f[3], t[3];
         memcpy(f, s->f[i], sizeof f);

@@ -8,7 +8,7 @@
 
 static void kick(dem_system *s, double half)
 {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (s->n >= DEM_PARALLEL_MIN)
     for (size_t k = 0; k < s->n; k++) {
         if (s->glued[k] >= 0)
             continue;
@@ -32,7 +32,7 @@ static void drift(dem_system *s)
         for (int q = 0; q < 3; q++)
             mo->shift[q] += mo->velocity[q] * dt;
     }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (s->n >= DEM_PARALLEL_MIN)
     for (size_t k = 0; k < s->n; k++) {
         if (s->glued[k] < 0) {
             for (int q = 0; q < 3; q++)

@@ -250,7 +250,7 @@ static size_t visit(const build_ctx *b, size_t i, dem_entry *out, double *bv)
 /* The walls each particle can reach before the next build (it moves less than skin/2). */
 static void mark_walls_near(dem_system *s)
 {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (s->n >= DEM_PARALLEL_MIN)
     for (size_t k = 0; k < s->n; k++) {
         uint8_t near = 0;
         for (int w = 0; w < s->nwalls; w++) {
@@ -271,6 +271,11 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
         if (2 * s->radius[k] > dmax)
             dmax = 2 * s->radius[k];
     double extra = s->skin + (s->bridges_on ? s->bridge_range : 0);
+    /* a state that blew up stops here, before its huge numbers reach the
+     * cells and image flags */
+    int bad = dem_check_state(s, err);
+    if (bad)
+        return bad;
     wrap_periodic(s);
     cell_grid g = {0};
     size_t *old_of = malloc((n ? n : 1) * sizeof *old_of);
@@ -287,7 +292,7 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
          * particles appended since it was built (indices >= nl->n) have none */
         build_ctx b = {s, &g, extra, nl->n <= n ? nl->start : NULL, old_of, nl->n, nl->e, nl->bv};
         start[0] = 0;
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (s->n >= DEM_PARALLEL_MIN)
         for (size_t i = 0; i < n; i++)
             start[i + 1] = visit(&b, i, NULL, NULL);
         for (size_t i = 0; i < n; i++)
@@ -298,7 +303,7 @@ int dem_neighbours_build(dem_system *s, mimas_error *err)
         if (!e || !bv)
             rc = mimas_error_set(err, MIMAS_EIO, "out of memory for %zu neighbour pairs", ne);
         else {
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (s->n >= DEM_PARALLEL_MIN)
             for (size_t i = 0; i < n; i++)
                 visit(&b, i, e + start[i], bv + start[i]);
         }
@@ -377,7 +382,7 @@ int dem_neighbours_update(dem_system *s, mimas_error *err)
     if (s->nl.n != s->n || !s->nl.start)
         return rebuild(s, err);
     double limit = 0.25 * s->skin * s->skin, worst = 0;
-#pragma omp parallel for reduction(max : worst)
+#pragma omp parallel for reduction(max : worst) if (s->n >= DEM_PARALLEL_MIN)
     for (size_t k = 0; k < s->n; k++) {
         double d2 = 0;
         for (int d = 0; d < 3; d++) {

@@ -4,12 +4,14 @@
 
 #include "scenario.h"
 
+#include <errno.h>
 #include <ini.h>
 #include <stdarg.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 enum { K_REAL, K_INT, K_BOOL, K_CHOICE };
 /* which scenario types a key applies to */
@@ -54,7 +56,7 @@ static const key_desc keys[] = {
     {"run", "output_every", K_INT, SC(output_every), 1, 1e15, 0, NULL, "steps",
      "write a frame (particles, contacts, wall contacts) every this many steps", S_ALL},
     {"run", "checkpoint_every", K_INT, SC(checkpoint_every), 0, 1e15, 0, NULL, "steps",
-     "write the checkpoint for --resume every this many steps (0: with every frame)", S_ALL},
+     "write the checkpoint for --resume every this many steps (0: first frame, then at most once a minute)", S_ALL},
     {"run", "output_settle", K_BOOL, SC(output_settle), 0, 1, 0, NULL, "",
      "also write frames while the packing settles (ringshear)", S_RING},
     {"particles", "diameter", K_REAL, SC(diameter), 0, BIG | R_MIN_OPEN, NULL, "m",
@@ -83,8 +85,8 @@ static const key_desc keys[] = {
     {"contact", "restitution", K_REAL, CP(restitution), 0, 1, 0, NULL, "",
      "coefficient of restitution e; 0: use damping_normal (linear); Hertz needs e > 0", S_ALL},
     {"contact", "normal_clip", K_BOOL, CP(normal_clip), 0, 1, 0, NULL, "",
-     "the normal force is never attractive: max(0, k delta - gamma v_n) (docs/theory.md "
-     "§2.1); with it, e is reached at the end of the repulsion (Strauß 2005, eq. 3.13-3.14)", S_ALL},
+     "normal force never attractive: max(0, k delta - gamma v_n); restitution at the end of "
+     "the repulsion (Strauß 2005, eq. 3.13-3.14; docs/theory.md §2.1)", S_ALL},
     {"contact", "youngs_modulus", K_REAL, CP(youngs_modulus), 0, BIG, NULL, "Pa",
      "E (Hertz, JKR)", S_ALL},
     {"contact", "poisson", K_REAL, CP(poisson), 0, 0.5, 0, NULL, "", "Poisson ratio nu", S_ALL},
@@ -202,7 +204,7 @@ int sim_scenario_type(const char *name)
 
 static void contact_defaults(sim_contact_params *c)
 {
-    /* the ring shear cell of Uhlig (2012, Table 4.2) */
+    /* the ring shear cell of Uhlig (2012, Table 4.2); docs/theory.md §7 */
     *c = (sim_contact_params){.model = SIM_LINEAR, .k_n = 110, .k_t = 12, .gamma_n = 2e-3,
                               .gamma_t = 0.5e-3, .restitution = 0, .normal_clip = 1,
                               .youngs_modulus = 0,
@@ -232,7 +234,7 @@ void sim_scenario_defaults(sim_scenario *s, int type)
     for (int a = 0; a < SIM_MAX_TYPES; a++)
         for (int b = 0; b < SIM_MAX_TYPES; b++)
             s->contact[a][b] = s->contact_all;
-    /* the split-bottom cell of Uhlig (2012) */
+    /* the split-bottom cell of Uhlig (2012); docs/theory.md §7 */
     s->r_in = 0.0147;
     s->r_split = 0.085;
     s->r_out = 0.11;
@@ -307,7 +309,7 @@ typedef struct parse_ctx {
     override *ov;
     size_t nov;
     int only_type;              /* first pass: look for [scenario] type only */
-    int found_type;
+    int found_type, has_type;
     char msg[MIMAS_ERROR_MSG_MAX - 64];
     int failed;
 } parse_ctx;
@@ -425,6 +427,7 @@ static int handler(void *user, const char *section, const char *name, const char
                 return fail(c, "[scenario] type must be ringshear, box, pulloff or plugtube, "
                                "not '%s'", value);
             c->found_type = t;
+            c->has_type = 1;
         }
         return 1;
     }
@@ -472,7 +475,7 @@ static int handler(void *user, const char *section, const char *name, const char
     } else {
         override *grown = realloc(c->ov, (c->nov + 1) * sizeof *grown);
         if (!grown)
-            return fail(c, "out of memory");
+            return fail(c, "out of memory for the [contact A-B] overrides");
         c->ov = grown;
         c->ov[c->nov++] = (override){a, b, k, v};
     }
@@ -515,6 +518,10 @@ static int load_any(sim_scenario *s, const char *path, const char *text, const c
     int line = run_parse(&c, path, text);
     if (line < 0)
         return mimas_error_set(err, MIMAS_EIO, "%s: cannot read the scenario file", name);
+    if (line == 0 && !c.has_type)
+        return mimas_error_set(err, MIMAS_EDATA, "%s: no [scenario] type (ringshear, box or "
+                               "pulloff): not a scenario file (see mimas simulate "
+                               "--print-defaults)", name);
     if (line == 0) {
         /* second pass: the defaults of the scenario type, then the file */
         sim_scenario_defaults(s, c.found_type);
@@ -542,6 +549,12 @@ static int load_any(sim_scenario *s, const char *path, const char *text, const c
 
 int sim_scenario_load(sim_scenario *s, const char *path, mimas_error *err)
 {
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return mimas_error_set(err, MIMAS_EDATA, "%s: cannot open the scenario file: %s", path,
+                               strerror(errno));
+    if (S_ISDIR(st.st_mode))
+        return mimas_error_set(err, MIMAS_EDATA, "%s: is a directory, not a scenario file", path);
     return load_any(s, path, NULL, path, err);
 }
 
@@ -551,8 +564,39 @@ int sim_scenario_load_string(sim_scenario *s, const char *text, const char *name
     return load_any(s, NULL, text, name, err);
 }
 
+/* The most steps a run may have (and still count them in int64 with room). */
+#define MAX_STEPS 1e15
+
+/* A simulated time in steps of dt: refuses a count that would overflow (a
+ * time of 1e300 s) or that no machine runs. */
+static int check_steps(const char *name, const char *section, const char *key, double time,
+                       double dt, mimas_error *err)
+{
+    if (dt == 0)
+        return MIMAS_OK; /* dt = 0: t_c/50, checked once it is known (sim_setup) */
+    double steps = time / dt;
+    if (!(steps <= MAX_STEPS))
+        return mimas_error_set(err, MIMAS_EDATA, "%s: [%s] %s = %g s is %g steps of dt = %g s, "
+                               "more than %g", name, section, key, time, steps, dt, MAX_STEPS);
+    return MIMAS_OK;
+}
+
 int sim_scenario_check(const sim_scenario *s, const char *name, mimas_error *err)
 {
+    int rc = MIMAS_OK;
+    if (s->type == SIM_RINGSHEAR)
+        rc = check_steps(name, "ringshear", "settle_time + shear_time",
+                         s->settle_time + s->shear_time, s->dt, err);
+    else if (s->type == SIM_BOX)
+        rc = check_steps(name, "box", "time", s->box_time, s->dt, err);
+    else if (s->type == SIM_PLUGTUBE)
+        rc = check_steps(name, "plugtube", "time", s->tube_time, s->dt, err);
+    else
+        rc = check_steps(name, "pulloff", "distance x radius / speed",
+                         s->pull_distance * s->diameter * s->coarse_grain / 2 / s->pull_speed,
+                         s->dt, err);
+    if (rc)
+        return rc;
     if (s->type == SIM_RINGSHEAR) {
         if (!(s->r_in < s->r_split && s->r_split < s->r_out))
             return mimas_error_set(err, MIMAS_EDATA, "%s: [ringshear] needs r_in < r_split < "

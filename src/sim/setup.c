@@ -55,6 +55,9 @@ int sim_setup(dem_system *s, const sim_scenario *scenario, sim_plan *plan, mimas
     *plan = (sim_plan){0};
     sim_scenario sc;
     int rc = sim_scenario_resolve(scenario, &sc, err);
+    /* the run's length in steps of the resolved dt */
+    if (!rc && scenario->dt == 0)
+        rc = sim_scenario_check(&sc, "the scenario", err);
     if (rc)
         return rc;
     rc = sc.type == SIM_RINGSHEAR ? sim_setup_ringshear(s, &sc, plan, err)
@@ -63,6 +66,11 @@ int sim_setup(dem_system *s, const sim_scenario *scenario, sim_plan *plan, mimas
                                   : sim_setup_plugtube(s, &sc, plan, err);
     if (rc)
         return rc;
+    s->has_domain = 1;
+    for (int d = 0; d < 3; d++) {
+        s->domain_lo[d] = plan->box.lo[d];
+        s->domain_hi[d] = plan->box.hi[d];
+    }
     return dem_configure(s, &sc, err);
 }
 

@@ -5,6 +5,7 @@
 
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
+#include <limits.h>
 #include <math.h>
 
 #include "setup.h"
@@ -14,19 +15,22 @@ int sim_setup_box(dem_system *s, const sim_scenario *sc, sim_plan *plan, mimas_e
     double d = sc->diameter * sc->coarse_grain, spread = sc->diameter_spread;
     double rmax = d / 2 * (1 + spread), a = 2 * rmax * 1.02;
     int m[3];
+    double sites = 1;   /* lattice sites, counted in double: a huge box overflows int */
     for (int q = 0; q < 3; q++) {
         s->lo[q] = 0;
         s->hi[q] = sc->box_size[q];
         s->periodic[q] = sc->box_periodic[q];
-        m[q] = (int)floor(sc->box_size[q] / a);
+        double cells = floor(sc->box_size[q] / a);
+        m[q] = cells > INT_MAX ? INT_MAX : (int)cells;
+        sites *= cells;
     }
-    if ((double)m[0] * m[1] * m[2] < (double)sc->box_count)
+    if (sites < (double)sc->box_count)
         return mimas_error_set(err, MIMAS_EDATA, "[box] %ld particles of diameter up to %g m "
-                               "do not fit into the box (at most %d)", sc->box_count, 2 * rmax,
-                               m[0] * m[1] * m[2]);
+                               "do not fit into the box (at most %.0f)", sc->box_count, 2 * rmax,
+                               sites);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     if (!rng)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the random number generator");
     gsl_rng_set(rng, (unsigned long)sc->seed);
     int rc = dem_reserve(s, (size_t)sc->box_count, err);
     for (long k = 0; k < sc->box_count && !rc; k++) {

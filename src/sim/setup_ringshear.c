@@ -52,9 +52,14 @@ int sim_setup_ringshear(dem_system *s, const sim_scenario *sc, sim_plan *plan,
         count = lround(0.6 * area * sc->fill_height / (M_PI / 6 * mean_cube(d, spread)));
     if (count < 1)
         return mimas_error_set(err, MIMAS_EDATA, "[ringshear] fill_height gives no particles");
+    /* the insertion lattices count cells in int */
+    if (!(sc->r_out / d <= 1e6) || !(0.6 * area * sc->fill_height / (M_PI / 6 * mean_cube(d, spread)) <= 1e9))
+        return mimas_error_set(err, MIMAS_EDATA, "[ringshear] r_out = %g m is more than 10^6 "
+                               "particle diameters, or the cell holds more than 10^9 particles",
+                               sc->r_out);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     if (!rng)
-        return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        return mimas_error_set(err, MIMAS_EIO, "out of memory for the random number generator");
     gsl_rng_set(rng, (unsigned long)sc->seed);
     s->motions[0] = (dem_motion){0};
     s->motions[1] = (dem_motion){0};

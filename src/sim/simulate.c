@@ -3,6 +3,7 @@
 
 #include "simulate.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -10,6 +11,7 @@
 #include "checkpoint.h"
 #include "native.h"
 #include "setup.h"
+#include "tmpfiles.h"
 
 static double now(void)
 {
@@ -53,6 +55,19 @@ static int write_parameters(const sim_scenario *sc, mimas_writer *w, mimas_error
     return rc;
 }
 
+/* A new output file with the scenario's keys as its run parameters (they
+ * must come before the first frame). */
+static int open_output(const sim_scenario *sc, const char *path, const mimas_writer_options *wo,
+                       mimas_writer **w, mimas_error *err)
+{
+    int rc = mimas_writer_open(w, path, wo, err);
+    if (!rc && (rc = write_parameters(sc, *w, err)) != MIMAS_OK) {
+        mimas_writer_abort(*w);
+        *w = NULL;
+    }
+    return rc;
+}
+
 /* Frame k of r with its observables into w. */
 static int copy_frame(mimas_native *r, const char *path, size_t k, mimas_frame *f,
                       mimas_writer *w, mimas_error *err)
@@ -77,16 +92,19 @@ static int copy_frame(mimas_native *r, const char *path, size_t k, mimas_frame *
  * file (under a temporary name, renamed over the old one), which the run
  * then continues.  Frames written after the checkpoint are dropped: the run
  * writes them again. */
-static int reopen_output(const sim_run_options *o, int64_t last_step, mimas_writer **w,
-                         const mimas_writer_options *wo, mimas_error *err)
+static int reopen_output(const sim_scenario *sc, const sim_run_options *o, int64_t last_step,
+                         mimas_writer **w, const mimas_writer_options *wo, mimas_error *err)
 {
     char tmp[4200];
-    snprintf(tmp, sizeof tmp, "%s.resume-tmp", o->output);
+    if (mimas_tmpfile_name(tmp, sizeof tmp, o->output))
+        return mimas_error_set(err, MIMAS_EUSAGE, "%s: the file name is too long", o->output);
     mimas_native *r;
     int rc = mimas_native_open(&r, o->output, err);
     if (rc)
         return rc;
-    if ((rc = mimas_writer_open(w, tmp, wo, err))) {
+    int slot = mimas_tmpfile_add(tmp);
+    if ((rc = open_output(sc, tmp, wo, w, err))) {
+        mimas_tmpfile_forget(slot);
         mimas_native_close(r);
         return rc;
     }
@@ -108,13 +126,21 @@ static int reopen_output(const sim_run_options *o, int64_t last_step, mimas_writ
         *w = NULL;
         remove(tmp);
     }
+    mimas_tmpfile_forget(slot);
     return rc;
 }
+
+/* Checkpoint cadence when checkpoint_every = 0 (automatic): with the first
+ * frame, then with a frame once this much wall time has passed since the
+ * last one, and at the end; a checkpoint costs a write of the whole state,
+ * a frame of a tiny system almost nothing. */
+#define CHECKPOINT_SECONDS 60.0
 
 int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
 {
     char ckpt[4200];
-    snprintf(ckpt, sizeof ckpt, "%s.ckpt", o->output);
+    if (snprintf(ckpt, sizeof ckpt, "%s.ckpt", o->output) >= (int)sizeof ckpt - 16)
+        return mimas_error_set(err, MIMAS_EUSAGE, "%s: the file name is too long", o->output);
     dem_system s;
     dem_init(&s);
     sim_plan plan;
@@ -130,33 +156,39 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
     size_t nstate = rc ? 0 : sim_plan_state(&plan, state, 16);
     if (!rc && o->resume) {
         if (!(rc = sim_checkpoint_read(&s, state, nstate, ckpt, err)))
-            rc = reopen_output(o, s.step, &w, &wo, err);
+            rc = reopen_output(sc, o, s.step, &w, &wo, err);
     } else if (!rc) {
-        remove(ckpt);
-        if (!(rc = mimas_writer_open(&w, o->output, &wo, err))) {
-            sim_plan_apply(&plan, &s);
-            if (!(rc = dem_neighbours_build(&s, err)))
-                dem_forces(&s);
-            if (!rc && plan.output_from == 0)
-                rc = write_frame(&s, &plan, &f, w, err);
+        /* everything that can fail on the scenario is done before the output
+         * is created: a refused scenario leaves no file and harms none */
+        sim_plan_apply(&plan, &s);
+        if (!(rc = dem_neighbours_build(&s, err)))
+            dem_forces(&s);
+        if (!rc)
+            rc = dem_check_state(&s, err);
+        if (!rc) {
+            remove(ckpt);
+            rc = open_output(sc, o->output, &wo, &w, err);
         }
+        if (!rc && plan.output_from == 0)
+            rc = write_frame(&s, &plan, &f, w, err);
     }
-    if (!rc)
-        rc = write_parameters(sc, w, err);
-    double t0 = now(), last = t0;
+    double t0 = now(), last = t0, last_ckpt = -INFINITY;
     int64_t first = s.step;
     while (!rc && s.step < plan.total_steps) {
         sim_plan_apply(&plan, &s);
         if ((rc = dem_step(&s, err)))
             break;
         int frame = s.step >= plan.output_from && s.step % sc->output_every == 0;
-        if (frame)
+        if (frame && !(rc = dem_check_state(&s, err)))
             rc = write_frame(&s, &plan, &f, w, err);
         int stop = o->stop_at > 0 && s.step >= o->stop_at;
-        if (!rc && ((sc->checkpoint_every == 0 && frame) ||
-                    (sc->checkpoint_every > 0 && s.step % sc->checkpoint_every == 0) || stop ||
-                    s.step == plan.total_steps))
+        int ckpt_now = stop || s.step == plan.total_steps ||
+                       (sc->checkpoint_every > 0 ? s.step % sc->checkpoint_every == 0
+                                                 : frame && now() - last_ckpt >= CHECKPOINT_SECONDS);
+        if (!rc && ckpt_now) {
             rc = sim_checkpoint_write(&s, state, nstate, ckpt, err);
+            last_ckpt = now();
+        }
         if (!rc && o->progress && (s.step % 100 == 0 || s.step == plan.total_steps)) {
             double t = now();
             if (t - last >= 0.5 || s.step == plan.total_steps) {
@@ -171,11 +203,14 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
         if (stop)
             break;
     }
+    /* the frames written so far stay readable, whatever stopped the run */
     if (w) {
         int rc2 = mimas_writer_close(w, rc ? NULL : err);
         if (!rc)
             rc = rc2;
     }
+    if (rc == MIMAS_EDATA && o->scenario && strncmp(err->msg, "step ", 5) == 0)
+        mimas_error_prefix(err, "%s", o->scenario);
     mimas_frame_free(&f);
     sim_plan_free(&plan, &s);
     dem_free(&s);

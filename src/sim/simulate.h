@@ -23,6 +23,7 @@ typedef struct sim_run_options {
     const char *provenance; /* recorded in the file */
     void (*progress)(void *ctx, const sim_progress *p);   /* every ~100 steps */
     void *ctx;
+    const char *scenario;   /* the scenario file, named in blow-up messages (may be NULL) */
 } sim_run_options;
 
 int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err);

@@ -89,6 +89,11 @@ int random_frame(mimas_frame *f, gsl_rng *rng, const random_frame_spec *s, int64
         p->mass[k] = 2000.0 * 4.0 / 3.0 * M_PI * pow(p->radius[k], 3);
         for (int d = 0; d < 3; d++)
             p->pos[k][d] = f->box.lo[d] + gsl_rng_uniform(rng) * (f->box.hi[d] - f->box.lo[d]);
+        /* the readers refuse what no simulation has: factors and volumes < 0 */
+        if (p->present & MIMAS_P_CG)
+            p->cg[k] = 1.0 + fabs(p->cg[k]);
+        if (p->present & MIMAS_P_LIQUID)
+            p->liquid[k] = 1e-9 * fabs(p->liquid[k]);
     }
     f->has_contacts = s->with_contacts;
     f->has_walls = s->with_walls;

@@ -299,7 +299,10 @@ static void test_scaled_diameter_density(void **state)
     assert_close(f.particles.pos[0][0], 1.0, 1e-15);
     assert_close(f.particles.pos[0][1], 0.5, 1e-15);
     assert_close(f.particles.pos[0][2], 0.0, 1e-15);
-    assert_close(f.particles.pos[1][0], 0.5, 1e-15); /* ys = 1 shifts x by xy */
+    /* ys = 1 (x shifted by xy) is the upper face of the periodic y: the reader
+     * wraps it to ys = 0, the same point of the periodic box */
+    assert_close(f.particles.pos[1][0], 0.0, 1e-15);
+    assert_close(f.particles.pos[1][1], 0.0, 1e-15);
     assert_true(f.particles.radius[0] == 0.1 && f.particles.radius[1] == 0.2);
     assert_close(f.particles.mass[1], 2000 * 4.0 / 3.0 * M_PI * 0.008, 1e-12);
     assert_false(f.particles.present & MIMAS_P_TYPE);
@@ -311,7 +314,7 @@ static void test_scaled_diameter_density(void **state)
 
 /* LAMMPS pair/local + property/local with anonymous columns named by
  * --contact-columns: overlap from the distance, the contact point derived
- * along the branch (PHYSICS 2), across a periodic face too. */
+ * along the branch (docs/theory.md §2), across a periodic face too. */
 static void test_lammps_pair_local_derived_point(void **state)
 {
     (void)state;

@@ -141,6 +141,8 @@ static void test_killed_writer_keeps_committed_frames(void **state)
             if (mimas_writer_append(w, &f, &err))
                 _exit(3);
         }
+        if (mimas_writer_flush(w, &err))
+            _exit(3);
         off_t committed = file_size(path);
         if (write(fd[1], &committed, sizeof committed) != sizeof committed)
             _exit(3);

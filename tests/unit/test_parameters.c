@@ -85,9 +85,10 @@ static void test_scenario_parameters(void **state)
     mimas_parameters_free(&ps);
 }
 
-/* A native file of two random frames with the scenario's parameters and two
- * observables; value k of observable q is 10 q + k + 0.1. */
-static void write_run(const char *path, const char *scenario, int observe)
+/* A native file of two random frames (steps step0, step0 + 10; times 0.5
+ * apart) with the scenario's parameters and two observables; value k of
+ * observable q is 10 q + k + 0.1. */
+static void write_run(const char *path, const char *scenario, int observe, int64_t step0)
 {
     sim_scenario sc;
     load(&sc, scenario);
@@ -97,19 +98,23 @@ static void write_run(const char *path, const char *scenario, int observe)
     assert_int_equal(sim_scenario_parameters(&sc, &ps, &err), MIMAS_OK);
     mimas_writer *w;
     assert_int_equal(mimas_writer_open(&w, path, NULL, &err), MIMAS_OK);
+    /* the parameters before the first frame (attributes, before SWMR) */
+    assert_int_equal(mimas_writer_parameters(w, "scenario", &ps, &err), MIMAS_OK);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     mimas_frame f;
     mimas_frame_init(&f);
     random_frame_spec spec = {50, 60, 5, 0, 0, 1, 1};
     for (int k = 0; k < 2; k++) {
-        assert_int_equal(random_frame(&f, rng, &spec, 10 * k), 0);
-        f.time = 0.5 * k;
+        assert_int_equal(random_frame(&f, rng, &spec, step0 + 10 * k), 0);
+        f.time = 0.05 * (double)step0 + 0.5 * k;
         mimas_observable obs[2] = {{"a_energy", "J", 0.1 + k}, {"b_count", NULL, 10.1 + k}};
         if (observe)
             assert_int_equal(mimas_writer_observe(w, obs, 2, &err), MIMAS_OK);
         assert_int_equal(mimas_writer_append(w, &f, &err), MIMAS_OK);
     }
-    assert_int_equal(mimas_writer_parameters(w, "scenario", &ps, &err), MIMAS_OK);
+    /* and not after it */
+    assert_int_equal(mimas_writer_parameters(w, "scenario", &ps, &err), MIMAS_EUSAGE);
+    assert_non_null(strstr(err.msg, "before the first frame"));
     assert_int_equal(mimas_writer_close(w, &err), MIMAS_OK);
     mimas_frame_free(&f);
     gsl_rng_free(rng);
@@ -122,7 +127,7 @@ static const char *const wet = "[scenario]\ntype = ringshear\n[particles]\n"
 static void test_native_round_trip(void **state)
 {
     (void)state;
-    write_run(scratch_path("run.h5"), wet, 1);
+    write_run(scratch_path("run.h5"), wet, 1, 0);
     sim_scenario sc;
     load(&sc, wet);
     mimas_parameters want;
@@ -187,7 +192,10 @@ static void test_observables_every_frame(void **state)
     mimas_observable obs[2] = {{"x", NULL, 1}, {"y", NULL, 2}};
     assert_int_equal(mimas_writer_observe(w, obs, 2, &err), MIMAS_OK);
     assert_int_equal(mimas_writer_append(w, &f, &err), MIMAS_OK);
-    /* the same names in another order are the same observables */
+    /* the same names in another order are the same observables (a later
+     * step: a reader refuses repeated ones) */
+    f.step = 10;
+    f.time += 0.1;
     mimas_observable swapped[2] = {{"y", NULL, 4}, {"x", NULL, 3}};
     assert_int_equal(mimas_writer_observe(w, swapped, 2, &err), MIMAS_OK);
     assert_int_equal(mimas_writer_append(w, &f, &err), MIMAS_OK);
@@ -219,9 +227,11 @@ static void test_observables_every_frame(void **state)
 static void test_reader_merges_inputs(void **state)
 {
     (void)state;
-    write_run(scratch_path("m1.h5"), wet, 0);
+    /* the second run continues the first's clock (a reader refuses repeated steps) */
+    write_run(scratch_path("m1.h5"), wet, 0, 0);
     write_run(scratch_path("m2.h5"), "[scenario]\ntype = ringshear\n[particles]\n"
-                                     "liquid_content = 0.01\n[ringshear]\nomega = 0.3\n", 0);
+                                     "liquid_content = 0.01\n[ringshear]\nomega = 0.3\n", 0,
+              20);
     mimas_error err;
     mimas_reader *r;
     const char *one[1] = {scratch_path("m1.h5")};
@@ -248,8 +258,11 @@ static void test_reader_merges_inputs(void **state)
     assert_int_equal(mimas_average_create(&avg, &o, &err), MIMAS_OK);
     mimas_frame f;
     mimas_frame_init(&f);
-    while (mimas_reader_next(r, &f, &err) == MIMAS_OK)
+    int rc;
+    while ((rc = mimas_reader_next(r, &f, &err)) == MIMAS_OK)
         assert_int_equal(mimas_average_add(avg, &f, &err), MIMAS_OK);
+    assert_int_equal(rc, MIMAS_END);
+    assert_int_equal(mimas_average_frames(avg), 4);
     mimas_fields_file *ff;
     assert_int_equal(mimas_fields_open(&ff, scratch_path("fields.h5"), NULL, &err), MIMAS_OK);
     assert_int_equal(mimas_fields_parameters(ff, "scenario", ps, &err), MIMAS_OK);

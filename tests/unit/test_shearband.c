@@ -110,10 +110,28 @@ static void test_inner_rotating(void **state)
     assert_true(f.p[MIMAS_BAND_W] > 0 && f.p[MIMAS_BAND_B] < 0);
     assert_close(f.p[MIMAS_BAND_RC], 0.0731, 1e-7);
     assert_close(f.p[MIMAS_BAND_B], -0.5, 1e-6);
-    /* model 2 on it: the same curve with a negative width */
+    /* model 2 on it converges to the same curve with a negative width: a
+     * band model 2 does not allow, so not ok */
     assert_int_equal(mimas_band_fit(r, y, NULL, NR, 2, 5, &f, &err), MIMAS_OK);
-    assert_int_equal(f.status, MIMAS_FIT_OK);
-    assert_close(f.p[MIMAS_BAND_W], -0.0310, 1e-7);
+    assert_int_equal(f.status, MIMAS_FIT_IMPLAUSIBLE);
+    assert_true(isnan(f.p[MIMAS_BAND_W]) && isnan(f.err[MIMAS_BAND_RC]));
+}
+
+/* The wrong sign of Omega: omega/Omega runs from 0 to -1, which no band of
+ * model 2 gives; the fit must not be reported ok (it once was, with an error
+ * of Rc of 5e9 m). */
+static void test_wrong_sign_of_omega(void **state)
+{
+    (void)state;
+    double p[2] = {0.0731, 0.0110}, r[NR], y[NR];
+    radii(r);
+    for (int i = 0; i < NR; i++)
+        y[i] = -mimas_band_profile(2, p, r[i]);
+    mimas_fit f;
+    mimas_error err;
+    assert_int_equal(mimas_band_fit(r, y, NULL, NR, 2, 5, &f, &err), MIMAS_OK);
+    assert_int_not_equal(f.status, MIMAS_FIT_OK);
+    assert_true(isnan(f.p[MIMAS_BAND_RC]) && isnan(f.p[MIMAS_BAND_W]));
 }
 
 static void test_profile_values(void **state)
@@ -275,6 +293,7 @@ int main(void)
         cmocka_unit_test(test_profile_values),
         cmocka_unit_test(test_coverage_dry_and_wet),
         cmocka_unit_test(test_inner_rotating),
+        cmocka_unit_test(test_wrong_sign_of_omega),
         cmocka_unit_test(test_failed_layers_are_reported),
         cmocka_unit_test(test_band_from_particles),
         cmocka_unit_test(test_grid_choice),
