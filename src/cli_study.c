@@ -42,8 +42,19 @@ int cli_study_option(const cli_command *cmd, cli_study *s, size_t k, const char 
     return 1;
 }
 
-int cli_study_begin(const cli_command *cmd, cli_study *s, size_t ninputs, const char *one)
+int cli_study_table_option(const cli_command *cmd, cli_table_options *t, cli_study *s, size_t k,
+                           const char *arg)
 {
+    return k < CLI_TABLE_NOPTIONS ? cli_table_option(cmd, t, k, arg)
+                                  : cli_study_option(cmd, s, k - CLI_TABLE_NOPTIONS, arg);
+}
+
+int cli_study_begin(const cli_command *cmd, cli_study *s, char *const *inputs, int ninput,
+                    const cli_inputs *in, const char *one)
+{
+    size_t ninputs = ninput > 0 ? (size_t)ninput : 0;
+    if (cli_refuse_input_as_output(cmd, s->trends, in, inputs, ninput))
+        return 1;
     if (s->name && s->values)
         return cli_fail(cmd, 1, "--study and --study-values exclude each other");
     if (!cli_study_on(s)) {
@@ -123,6 +134,15 @@ void cli_study_column(cli_table *t, const cli_study *s)
     cli_table_column(t, "study", s->unit[0] ? s->unit : NULL);
 }
 
+void cli_study_header(cli_table *t, const cli_study *s, const char *const *names,
+                      const char *const *units, size_t n)
+{
+    if (s)
+        cli_study_column(t, s);
+    cli_table_columns(t, names, units, n);
+    cli_table_header_end(t);
+}
+
 static void write_trends(FILE *out, const cli_table_options *to, const cli_trend_row *rows,
                          size_t n)
 {
@@ -132,9 +152,9 @@ static void write_trends(FILE *out, const cli_table_options *to, const cli_trend
                                        "A1_err", "A2", "A2_err", "change_first",
                                        "change_first_err", "change_rest", "change_rest_err",
                                        "status"};
-    for (size_t k = 0; k < sizeof cols / sizeof cols[0]; k++)
-        cli_table_column(&t, cols[k], k >= 9 && k <= 12 ? "%" : NULL);
-    cli_table_header_end(&t);
+    static const char *const units[] = {NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
+                                        "%", "%", "%", "%", NULL};
+    cli_study_header(&t, NULL, cols, units, sizeof cols / sizeof cols[0]);
     for (size_t k = 0; k < n; k++) {
         const mimas_trend *tr = &rows[k].trend;
         cli_table_text(&t, rows[k].table);

@@ -25,6 +25,9 @@
     {"trends", 0, "FILE", "write the trends table to FILE (default: after the runs' table, "     \
                           "two empty lines apart)"}
 #define CLI_STUDY_NOPTIONS 4
+/* The table options (CLI_TABLE_OPTIONS) and then the study options, as the
+ * analyses that compare runs declare them at the end of their option table. */
+#define CLI_STUDY_TABLE_OPTIONS CLI_TABLE_OPTIONS, CLI_STUDY_OPTIONS
 
 typedef struct cli_study {
     const char *name;         /* --study */
@@ -42,14 +45,20 @@ void cli_study_free(cli_study *s);
 /* Handles option k (0 .. CLI_STUDY_NOPTIONS - 1 of CLI_STUDY_OPTIONS);
  * returns 0 or the exit status after the usage message. */
 int cli_study_option(const cli_command *cmd, cli_study *s, size_t k, const char *arg);
+/* Option k of CLI_STUDY_TABLE_OPTIONS: a table option into t, a study
+ * option into s. */
+int cli_study_table_option(const cli_command *cmd, cli_table_options *t, cli_study *s, size_t k,
+                           const char *arg);
 /* 1 if a study was asked for. */
 int cli_study_on(const cli_study *s);
-/* After parsing, with the number of inputs: checks the combination (at
- * least two runs, as many --study-values as inputs; without a study exactly
- * one input when one is not NULL, then named by it in the message) and
+/* After parsing, with the inputs (and the contact files of in, may be
+ * NULL): checks the combination (at least two runs, as many --study-values
+ * as inputs; without a study exactly one input when one is not NULL, then
+ * named by it in the message; a --trends file that is not an input) and
  * prepares the study values.  Returns 0 or the exit status after the
  * message. */
-int cli_study_begin(const cli_command *cmd, cli_study *s, size_t ninputs, const char *one);
+int cli_study_begin(const cli_command *cmd, cli_study *s, char *const *inputs, int ninputs,
+                    const cli_inputs *in, const char *one);
 /* The study value of run k from its run parameters (with --study) or from
  * --study-values; source names the run in messages.  The parameters are
  * kept for cli_study_note. */
@@ -72,6 +81,10 @@ typedef struct cli_trend_row {
 
 /* The first column of a study's runs table: "study", with the variable's unit. */
 void cli_study_column(cli_table *t, const cli_study *s);
+/* A whole header: the study column (s NULL: none), then names[k] with
+ * units[k] (units NULL: all "-"), then the end of the header line. */
+void cli_study_header(cli_table *t, const cli_study *s, const char *const *names,
+                      const char *const *units, size_t n);
 /* Writes the runs' table (write_runs writes its header and rows into t) to
  * output and the trends table (docs/study.md: table parameter lo hi nruns A1
  * A1_err A2 A2_err change_first change_first_err change_rest change_rest_err

@@ -25,12 +25,10 @@ static const cli_option options[] = {
     {"plot", 0, "FILE.png", "with a study: the mean total energy and its coefficient of "
                             "variation against the study variable (gnuplot)"},
     {"output", 'o', "FILE", "write the table to FILE (default: standard output)"},
-    CLI_TABLE_OPTIONS,
-    CLI_STUDY_OPTIONS,
+    CLI_STUDY_TABLE_OPTIONS,
 };
 
-enum { O_FROM, O_TO, O_COLUMNS, O_TIMESTEP, O_PLOT, O_OUTPUT, O_TABLE,
-       O_STUDY = O_TABLE + CLI_TABLE_NOPTIONS };
+enum { O_FROM, O_TO, O_COLUMNS, O_TIMESTEP, O_PLOT, O_OUTPUT, O_TABLE };
 
 typedef struct energy_args {
     const cli_command *cmd;
@@ -78,22 +76,16 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_PLOT: a->plot = arg; return 0;
     case O_OUTPUT: a->output = arg; return 0;
     }
-    if (opt < O_STUDY)
-        return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
-    return cli_study_option(a->cmd, &a->study, opt - O_STUDY, arg);
+    return cli_study_table_option(a->cmd, &a->table, &a->study, opt - O_TABLE, arg);
 }
 
 /* The header of the table; with study, first the study column. */
 static void write_header(cli_table *t, const cli_study *study)
 {
-    if (study)
-        cli_study_column(t, study);
     static const char *const cols[] = {"energy", "mean", "std", "cv_percent", "frames", "from",
                                        "to"};
     static const char *const units[] = {NULL, "J", "J", "%", NULL, "s", "s"};
-    for (int k = 0; k < 7; k++)
-        cli_table_column(t, cols[k], units[k]);
-    cli_table_header_end(t);
+    cli_study_header(t, study, cols, units, 7);
 }
 
 /* A row per quantity present; with study, first the study column holding *study. */
@@ -116,19 +108,10 @@ static void write_rows(cli_table *t, const mimas_energy *e, const double *study)
     }
 }
 
-typedef struct energy_table {
-    const energy_args *a;
-    const mimas_energy *e;
-} energy_table;
-
-static void write_table(FILE *out, const void *ctx)
+static void write_table(cli_table *t, const void *ctx)
 {
-    const energy_table *et = ctx;
-    cli_table t;
-    cli_table_start(&t, out, &et->a->table);
-    write_header(&t, NULL);
-    write_rows(&t, et->e, NULL);
-    cli_table_end(&t);
+    write_header(t, NULL);
+    write_rows(t, ctx, NULL);
 }
 
 /* ---- a study ---- */
@@ -265,13 +248,13 @@ static int run(const cli_command *cmd, int argc, char **argv)
     int first;
     int rc = cli_parse(cmd, argc, argv, on_option, &a, NULL, &first);
     if (!rc)
-        rc = cli_study_begin(cmd, &a.study, (size_t)(argc - first), "run (RUN.h5 or a log)");
+        rc = cli_study_begin(cmd, &a.study, argv + first, argc - first, NULL,
+                             "run (RUN.h5 or a log)");
     if (!rc && a.plot && !cli_study_on(&a.study))
         rc = cli_fail(cmd, 1, "--plot draws a study: it needs --study or --study-values");
     if (!rc)
         rc = cli_refuse_input_as_output(cmd, a.output, NULL, argv + first, argc - first) ||
-             cli_refuse_input_as_output(cmd, a.plot, NULL, argv + first, argc - first) ||
-             cli_refuse_input_as_output(cmd, a.study.trends, NULL, argv + first, argc - first);
+             cli_refuse_input_as_output(cmd, a.plot, NULL, argv + first, argc - first);
     if (rc) {
         cli_study_free(&a.study);
         return rc < 0 ? 0 : rc;
@@ -287,9 +270,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
     } else {
         mimas_energy e;
         status = mimas_energy_of(argv[first], &a.o, &e, &err);
-        energy_table et = {&a, &e};
         if (!status)
-            status = cli_write_table(a.output, write_table, &et, &err);
+            status = cli_table_write(a.output, &a.table, write_table, &e, &err);
     }
     cli_study_free(&a.study);
     if (status)

@@ -29,12 +29,11 @@ static const cli_option options[] = {
     {"plot", 0, "PREFIX", "draw PREFIX.yield.png, PREFIX.mu_I.png and PREFIX.eta.png (gnuplot); "
                           "with a study PREFIX.study.png"},
     {"output", 'o', "FILE", "write the table to FILE (default: standard output)"},
-    CLI_TABLE_OPTIONS,
-    CLI_STUDY_OPTIONS,
+    CLI_STUDY_TABLE_OPTIONS,
 };
 
 enum { O_MIN_RATE, O_P_RANGE, O_RATE_WINDOWS, O_I_WINDOWS, O_DEFINITION, O_PLOT, O_OUTPUT,
-       O_TABLE, O_STUDY = O_TABLE + CLI_TABLE_NOPTIONS };
+       O_TABLE };
 
 typedef struct rheology_args {
     const cli_command *cmd;
@@ -82,22 +81,16 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_PLOT: a->plot = arg; return 0;
     case O_OUTPUT: a->output = arg; return 0;
     }
-    if (opt < O_STUDY)
-        return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
-    return cli_study_option(a->cmd, &a->study, opt - O_STUDY, arg);
+    return cli_study_table_option(a->cmd, &a->table, &a->study, opt - O_TABLE, arg);
 }
 
 /* The header and rows of one analysis; with study, first the study column
  * holding *study. */
 static void table_header(cli_table *t, const cli_study *study)
 {
-    if (study)
-        cli_study_column(t, study);
     static const char *const cols[] = {"table", "parameter", "value", "error", "npts", "lo",
                                        "hi", "status"};
-    for (int k = 0; k < 8; k++)
-        cli_table_column(t, cols[k], NULL);
-    cli_table_header_end(t);
+    cli_study_header(t, study, cols, NULL, 8);
 }
 
 static void table_rows(cli_table *t, const mimas_rheology *r, const double *study)
@@ -118,20 +111,11 @@ static void table_rows(cli_table *t, const mimas_rheology *r, const double *stud
     }
 }
 
-typedef struct rheology_table {
-    const rheology_args *a;
-    const mimas_rheology *r;
-} rheology_table;
-
 /* The units of value, error, lo and hi depend on the row (docs/rheology.md): "-". */
-static void write_table(FILE *out, const void *ctx)
+static void write_table(cli_table *t, const void *ctx)
 {
-    const rheology_table *rt = ctx;
-    cli_table t;
-    cli_table_start(&t, out, &rt->a->table);
-    table_header(&t, NULL);
-    table_rows(&t, rt->r, NULL);
-    cli_table_end(&t);
+    table_header(t, NULL);
+    table_rows(t, ctx, NULL);
 }
 
 static int run_one(const rheology_args *a, const char *input, mimas_error *err)
@@ -144,9 +128,8 @@ static int run_one(const rheology_args *a, const char *input, mimas_error *err)
     mimas_fieldset_close(fs);
     if (!status && a->plot)
         status = mimas_rheology_plot(r, a->plot, err);
-    rheology_table rt = {a, r};
     if (!status)
-        status = cli_write_table(a->output, write_table, &rt, err);
+        status = cli_table_write(a->output, &a->table, write_table, r, err);
     mimas_rheology_free(r);
     return status;
 }
@@ -294,12 +277,11 @@ static int run(const cli_command *cmd, int argc, char **argv)
     int first;
     int rc = cli_parse(cmd, argc, argv, on_option, &a, NULL, &first);
     if (!rc)
-        rc = cli_study_begin(cmd, &a.study, (size_t)(argc - first),
+        rc = cli_study_begin(cmd, &a.study, argv + first, argc - first, NULL,
                              "field file (mimas average -o FIELDS.h5)");
     if (!rc)
         rc = cli_refuse_input_as_output(cmd, a.output, NULL, argv + first, argc - first) ||
-             cli_refuse_input_as_output(cmd, a.plot, NULL, argv + first, argc - first) ||
-             cli_refuse_input_as_output(cmd, a.study.trends, NULL, argv + first, argc - first);
+             cli_refuse_input_as_output(cmd, a.plot, NULL, argv + first, argc - first);
     if (rc) {
         cli_study_free(&a.study);
         return rc < 0 ? 0 : rc;

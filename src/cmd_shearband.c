@@ -36,12 +36,11 @@ static const cli_option options[] = {
                               "particles)"},
     {"layer", 0, "Z", "study: the trends of Rc and W are those of the layer containing height Z "
                       "(default: the highest layer fitted, the surface layer)"},
-    CLI_TABLE_OPTIONS,
-    CLI_STUDY_OPTIONS,
+    CLI_STUDY_TABLE_OPTIONS,
 };
 
 enum { O_OMEGA, O_MODEL, O_MIN, O_UNWEIGHTED, O_FENISTEIN, O_PLOT, O_OUTPUT, O_FROM, O_TO,
-       O_EXCLUDE, O_LAYER, O_TABLE, O_STUDY = O_TABLE + CLI_TABLE_NOPTIONS };
+       O_EXCLUDE, O_LAYER, O_TABLE };
 
 typedef struct band_args {
     const cli_command *cmd;
@@ -102,9 +101,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
         a->has_layer = 1;
         return 0;
     }
-    if (opt < O_STUDY)
-        return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
-    return cli_study_option(a->cmd, &a->study, opt - O_STUDY, arg);
+    return cli_study_table_option(a->cmd, &a->table, &a->study, opt - O_TABLE, arg);
 }
 
 /* Raw particle input: average with bins on an r-z grid chosen from the
@@ -221,14 +218,11 @@ static void write_rows(cli_table *t, const band_args *a, const mimas_band *b,
     }
 }
 
-static void write_table(FILE *out, const void *ctx)
+static void write_table(cli_table *t, const void *ctx)
 {
     const band_table *bt = ctx;
-    cli_table t;
-    cli_table_start(&t, out, &bt->a->table);
-    write_header(&t, bt->a, bt->b->model, NULL);
-    write_rows(&t, bt->a, bt->b, NULL);
-    cli_table_end(&t);
+    write_header(t, bt->a, bt->b->model, NULL);
+    write_rows(t, bt->a, bt->b, NULL);
 }
 
 /* The field set of one input: a field file, or raw particle input averaged. */
@@ -374,7 +368,7 @@ static int run_one(band_args *a, cli_inputs *in, char **inputs, int n, mimas_err
         status = mimas_band_plot(b, a->plot, err);
     band_table t = {a, b};
     if (!status && root)
-        status = cli_write_table(a->output, write_table, &t, err);
+        status = cli_table_write(a->output, &a->table, write_table, &t, err);
     mimas_band_free(b);
     return status;
 }
@@ -398,13 +392,12 @@ static int run(const cli_command *cmd, int argc, char **argv)
         rc = cli_fail(cmd, 1, "--min-points must exceed the %d parameters of the model",
                       a.o.model);
     if (!rc)
-        rc = cli_study_begin(cmd, &a.study, (size_t)(argc - first), NULL);
+        rc = cli_study_begin(cmd, &a.study, argv + first, argc - first, &in, NULL);
     if (!rc && a.has_layer && !cli_study_on(&a.study))
         rc = cli_fail(cmd, 1, "--layer needs --study or --study-values");
     if (!rc)
         rc = cli_refuse_input_as_output(cmd, a.output, &in, argv + first, argc - first) ||
-             cli_refuse_input_as_output(cmd, a.plot, &in, argv + first, argc - first) ||
-             cli_refuse_input_as_output(cmd, a.study.trends, &in, argv + first, argc - first);
+             cli_refuse_input_as_output(cmd, a.plot, &in, argv + first, argc - first);
     mimas_error err;
     int status = MIMAS_OK;
     if (!rc)

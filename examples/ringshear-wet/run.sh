@@ -43,7 +43,7 @@ cat "$out/shearband-trends.tsv"
 echo "== rheology: yield line and windowed viscosities against D"
 # shellcheck disable=SC2086
 "$MIMAS" rheology $fields --study liquid_content --definition luding --min-shear-rate 0.02 \
-    --shear-rate-windows 0.1:0.5,0.5:1,1:2,2:4 --I-windows 0.001:0.003,0.003:0.01,0.01:0.03 \
+    --shear-rate-windows 0.02:0.1,0.1:0.5,0.5:1 --I-windows 0.0001:0.001,0.001:0.003,0.003:0.01 \
     -o "$out/rheology.tsv" --trends "$out/rheology-trends.tsv" --plot "$out/rheology"
 grep -E '^(table|yield|eta_window)' "$out/rheology-trends.tsv" || true
 echo "== energy: mean energies over t >= $from s and their coefficient of variation"
