@@ -15,6 +15,7 @@
 #include "disperse.h"
 #include "fit.h"
 #include "h5util.h"
+#include "outfile.h"
 #include "plot.h"
 #include "reader.h"
 
@@ -170,13 +171,14 @@ static int settle_outputs(disperse_args *a)
     return 0;
 }
 
-/* The folder of the first output file: the scratch file goes there. */
+/* The folder of the first output that is a file (not standard output, a
+ * device or a pipe: /dev is no place for scratch): the scratch file goes there. */
 static void scratch_folder(const disperse_args *a, char *dir, size_t len)
 {
     const char *paths[] = {a->output, a->tsv, a->cohort_table, a->diffusion_table, a->plot};
     dir[0] = '\0';
     for (size_t k = 0; k < sizeof paths / sizeof paths[0]; k++) {
-        if (!paths[k] || is_stdout(paths[k]))
+        if (!paths[k] || is_stdout(paths[k]) || mimas_output_is_special(paths[k]))
             continue;
         const char *slash = strrchr(paths[k], '/');
         if (!slash)

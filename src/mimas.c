@@ -71,6 +71,9 @@ static int dispatch(int argc, char **argv);
 
 int main(int argc, char **argv)
 {
+    /* first: it may re-execute the program (passive OpenMP waiting), which
+     * must happen before MPI starts */
+    cli_start(argc, argv);
     /* under mpirun: MPI for the frame-parallel commands (docs/parallel.md) */
     if (mimas_par_init(&argc, &argv)) {
         fprintf(stderr, "mimas: MPI could not start\n");
@@ -86,7 +89,6 @@ static int dispatch(int argc, char **argv)
     /* the library checks GSL's return codes (a fit that fails has a status);
      * GSL's default handler would abort the program instead */
     gsl_set_error_handler_off();
-    cli_start(argc, argv);
     if (argc < 2) {
         usage(stderr);
         return 1;

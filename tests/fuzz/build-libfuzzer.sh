@@ -18,34 +18,31 @@ mkdir -p "$out"
 out=$(cd "$out" && pwd)
 printf '#define _GNU_SOURCE 1\n#define PACKAGE_NAME "mimas"\n#define PACKAGE_VERSION "fuzz"\n' >"$out/config.h"
 hdf5=$(pkg-config --cflags --libs hdf5 2>/dev/null || pkg-config --cflags --libs hdf5-serial)
-lib="$top/src/error.c $top/src/frame.c $top/src/frame_check.c $top/src/tmpfiles.c \
-     $top/src/id_index.c $top/src/h5util.c \
-     $top/src/native_layout.c $top/src/native_write.c $top/readers/native_read.c \
-     $top/readers/native_stream.c $top/readers/reader.c $top/readers/text_input.c \
-     $top/readers/numparse.c $top/readers/lammps.c $top/readers/lammps_series.c \
-     $top/readers/lammps_atoms.c $top/readers/lammps_local.c $top/readers/mercury.c \
-     $top/src/parameters.c $top/readers/thermo_log.c"
-sim="$top/src/sim/scenario.c $top/src/sim/dem.c $top/src/sim/contact_law.c \
-     $top/src/sim/cohesion.c $top/src/sim/neighbour.c $top/src/sim/forces.c \
-     $top/src/sim/integrate.c $top/src/sim/setup.c $top/src/sim/setup_ringshear.c \
-     $top/src/sim/setup_box.c $top/src/sim/setup_pulloff.c $top/src/sim/blowup.c"
-for f in "$top"/src/sim/setup_*.c; do
-    case " $sim " in *" $f "*) ;; *) sim="$sim $f" ;; esac
-done
-cflags="-g -O1 -fsanitize=address,undefined -I$out -I$top/src -I$top/src/sim -I$top/readers"
-incs="$hdf5 $(pkg-config --cflags gsl)"
-# the library once (objects with the fuzzer's coverage hooks), then each target
+# the library's sources as Makefile.am lists them (so this script cannot fall
+# behind the library), compiled once with the fuzzer's coverage hooks into an
+# archive: each target links only what it reaches
+sources=$(awk '/^libmimas_la_SOURCES *[+]?=/ { on = 1 }
+    on { for (i = 1; i <= NF; i++) if ($i ~ /[.](c|cc)$/) print $i; if ($0 !~ /[\\]$/) on = 0 }' \
+    "$top/Makefile.am")
+[ -n "$sources" ] || { echo "build-libfuzzer.sh: no library sources in Makefile.am" >&2; exit 1; }
+incs="-I$out -I$top/src -I$top/src/sim -I$top/readers -I$top/averaging $hdf5 \
+      $(pkg-config --cflags gsl fftw3) -isystem /usr/include/voro++"
+cflags="-g -O1 -fsanitize=address,undefined -Wno-unknown-pragmas"
+rm -rf "$out/obj"
 mkdir -p "$out/obj"
-objs=
-for f in $lib $sim "$top/tests/fuzz/fuzz_input.c"; do
-    o="$out/obj/$(basename "$f" .c).o"
-    clang $cflags -fsanitize=fuzzer-no-link $incs -c "$f" -o "$o"
-    objs="$objs $o"
-done
+rm -f "$out/libmimas-fuzz.a"
+export top out incs cflags
+printf '%s\n' $sources "tests/fuzz/fuzz_input.c" | xargs -P "$(nproc 2>/dev/null || echo 2)" -I{} sh -c '
+    f={}; o="$out/obj/$(echo "$f" | tr / _).o"
+    case $f in *.cc) cc="clang++ -std=c++17" ;; *) cc="clang -std=gnu17" ;; esac
+    $cc $cflags -fsanitize=fuzzer-no-link $incs -c "$top/$f" -o "$o"' || exit 1
+ar rcs "$out/libmimas-fuzz.a" "$out"/obj/*.o
 targets="dump local mercury native scenario thermo"
-libs="$hdf5 $(pkg-config --libs gsl) $(pkg-config --libs inih 2>/dev/null || echo -linih) -lz -lm"
+libs="$hdf5 $(pkg-config --libs gsl fftw3) $(pkg-config --libs inih 2>/dev/null || echo -linih) \
+      -lvoro++ -ldouble-conversion -lz -lm"
 for t in $targets; do
-    clang $cflags -fsanitize=fuzzer $incs $objs "$top/tests/fuzz/fuzz_$t.c" $libs -o "$out/fuzz_$t"
+    clang++ $cflags -fsanitize=fuzzer $incs -x c "$top/tests/fuzz/fuzz_$t.c" -x none \
+        "$out/libmimas-fuzz.a" $libs -o "$out/fuzz_$t"
 done
 [ -n "$budget" ] || exit 0
 status=0
