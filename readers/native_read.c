@@ -932,6 +932,7 @@ int mimas_native_frame_meta(mimas_native *r, size_t k, mimas_frame_meta *m, mima
     m->n_particles = (size_t)n;
     if (!rc) {
         mimas_frame tmp;  /* only its box is filled */
+        memset(&tmp.box, 0, sizeof tmp.box); /* and its padding (mimas info memcmps boxes) */
         rc = read_box(r, k, &tmp, err);
         m->box = tmp.box;
     }
