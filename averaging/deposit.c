@@ -1,6 +1,6 @@
 #include <config.h>
 
-#include "deposit.h"
+#include "deposit_impl.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -14,11 +14,11 @@ void mimas_weights_free(mimas_weights *ws)
     free(ws->cell);
     free(ws->w);
     free(ws->grad);
+    free(ws->scratch);
     memset(ws, 0, sizeof *ws);
 }
 
-/* Room for k more entries. */
-static int reserve(mimas_weights *ws, size_t k)
+int mimas_weights_reserve(mimas_weights *ws, size_t k)
 {
     if (ws->n + k <= ws->cap)
         return MIMAS_OK;
@@ -40,21 +40,16 @@ static int reserve(mimas_weights *ws, size_t k)
     return MIMAS_OK;
 }
 
-static inline void put(mimas_weights *ws, size_t cell, double w)
+double *mimas_weights_scratch(mimas_weights *ws, size_t n)
 {
-    ws->cell[ws->n] = cell;
-    ws->w[ws->n] = w;
-    ws->n++;
-}
-
-static inline void put_grad(mimas_weights *ws, size_t cell, double w, double g0, double g1,
-                            double g2)
-{
-    double *g = &ws->grad[3 * ws->n];
-    g[0] = g0;
-    g[1] = g1;
-    g[2] = g2;
-    put(ws, cell, w);
+    if (n > ws->scratch_cap) {
+        double *p = realloc(ws->scratch, n * sizeof *p);
+        if (!p)
+            return NULL;
+        ws->scratch = p;
+        ws->scratch_cap = n;
+    }
+    return ws->scratch;
 }
 
 /* Whether shift s projects onto the directions a kernel is resolved in like an
@@ -82,38 +77,6 @@ static int same_projection(const mimas_deposit *dp, const mimas_grid *g, int s, 
     return 1;
 }
 
-/* G(u) = e^{u^2} erf(u) satisfies G' = 2u G + 2/sqrt(pi): its Taylor coefficients about
- * u_c follow from a_0 = G(u_c) by (k + 1) a_{k+1} = 2 u_c a_k + 2 a_{k-1} (a_1 = 2 u_c a_0 +
- * 2/sqrt(pi)), all positive for u_c > 0 (no cancellation).  Degree 12 on intervals of 1/16
- * leaves a relative truncation error below 1e-17 up to u = 4. */
-enum { GTAB_N = 64, GTAB_DEG = 12 };
-static const double GTAB_DU = 1.0 / 16.0;
-
-static void gtab_setup(mimas_deposit *dp)
-{
-    for (int m = 0; m < GTAB_N; m++) {
-        double uc = (m + 0.5) * GTAB_DU, *a = dp->gtab[m];
-        a[0] = exp(uc * uc) * erf(uc);
-        a[1] = 2.0 * uc * a[0] + 2.0 / sqrt(M_PI);
-        for (int k = 1; k < GTAB_DEG; k++)
-            a[k + 1] = (2.0 * uc * a[k] + 2.0 * a[k - 1]) / (k + 1);
-    }
-}
-
-/* G(u) for |u| < 4 (odd) */
-static inline double gtab_eval(const mimas_deposit *dp, double u)
-{
-    double x = fabs(u);
-    int m = (int)(x * 16.0);
-    if (m >= GTAB_N)
-        m = GTAB_N - 1;
-    const double *a = dp->gtab[m];
-    double d = x - (m + 0.5) * GTAB_DU, v = a[GTAB_DEG];
-    for (int k = GTAB_DEG - 1; k >= 0; k--)
-        v = v * d + a[k];
-    return u < 0 ? -v : v;
-}
-
 void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,
                         const mimas_box *box, int grid_none)
 {
@@ -139,9 +102,11 @@ void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weig
             dp->inv_extent = 1.0 / (g->hi[2] - g->lo[2]);
     }
     if (dp->kernel && wt->kind != MIMAS_WEIGHT_LUCY && g->kind == MIMAS_GRID_CARTESIAN &&
-        dp->dims == 3 && wt->cutoff / M_SQRT2 < GTAB_N * GTAB_DU) {
-        gtab_setup(dp);
-        dp->gtab_ok = 1;
+        dp->dims == 3) {
+        dp->gauss_xyz = 1;
+        for (int d = 0; d < 3; d++)
+            dp->gq[d] = exp(-2.0 * dp->h[d] * dp->h[d] * wt->inv2w2);
+        mimas_gauss_tables();
     }
     /* images along the periodic edge vectors: shifts k_a a + k_b b + k_c c */
     double e[3][3];
@@ -174,7 +139,7 @@ void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weig
 /* Cell index range [i0, i1] of direction d overlapping [lo, hi] (grid
  * coordinates); 0 if none.  Directions a kernel is integrated over have
  * their one cell whatever the range. */
-static int index_range(const mimas_deposit *dp, int d, double lo, double hi, int *i0, int *i1)
+int dep_index_range(const mimas_deposit *dp, int d, double lo, double hi, int *i0, int *i1)
 {
     const mimas_grid *g = dp->grid;
     if (dp->kernel && !g->gridded[d] && (g->kind == MIMAS_GRID_CARTESIAN || d == 2)) {
@@ -199,14 +164,6 @@ static void cell_geometry(const mimas_deposit *dp, const int idx[3], double lo[3
         hi[d] = idx[d] + 1 == g->n[d] ? g->hi[d] : lo[d] + dp->h[d];
         c[d] = 0.5 * (lo[d] + hi[d]);
     }
-}
-
-/* The centre of cell i along direction d. */
-static double centre(const mimas_deposit *dp, int d, int i)
-{
-    const mimas_grid *g = dp->grid;
-    double lo = g->lo[d] + dp->h[d] * i, hi = i + 1 == g->n[d] ? g->hi[d] : lo + dp->h[d];
-    return 0.5 * (lo + hi);
 }
 
 static double cell_volume(const mimas_deposit *dp, const double lo[3], const double hi[3])
@@ -251,26 +208,26 @@ static void grid_coords(const mimas_grid *g, const double a[3], double q[3])
 /* The index box of the cells that may meet the ball of radius reach about the
  * axis-frame point a (all phi cells when the ball holds the axis or the phi
  * range wraps); 0 if there are none. */
-static int candidate_box(const mimas_deposit *dp, const double a[3], double reach, int lo[3],
-                         int hi[3])
+int dep_candidate_box(const mimas_deposit *dp, const double a[3], double reach, int lo[3],
+                      int hi[3])
 {
     const mimas_grid *g = dp->grid;
     double q[3];
     grid_coords(g, a, q);
     if (g->kind == MIMAS_GRID_CARTESIAN) {
         for (int d = 0; d < 3; d++)
-            if (!index_range(dp, d, q[d] - reach, q[d] + reach, &lo[d], &hi[d]))
+            if (!dep_index_range(dp, d, q[d] - reach, q[d] + reach, &lo[d], &hi[d]))
                 return 0;
         return 1;
     }
-    if (!index_range(dp, 0, q[0] - reach, q[0] + reach, &lo[0], &hi[0]) ||
-        !index_range(dp, 2, q[2] - reach, q[2] + reach, &lo[2], &hi[2]))
+    if (!dep_index_range(dp, 0, q[0] - reach, q[0] + reach, &lo[0], &hi[0]) ||
+        !dep_index_range(dp, 2, q[2] - reach, q[2] + reach, &lo[2], &hi[2]))
         return 0;
     double half = q[0] > reach ? asin(reach / q[0]) : M_PI;
     lo[1] = 0;
     hi[1] = g->n[1] - 1;
     if (half < M_PI && q[1] - half >= g->lo[1] && q[1] + half <= g->hi[1])
-        index_range(dp, 1, q[1] - half, q[1] + half, &lo[1], &hi[1]);
+        dep_index_range(dp, 1, q[1] - half, q[1] + half, &lo[1], &hi[1]);
     return 1;
 }
 
@@ -291,23 +248,23 @@ static int image_reaches(const mimas_deposit *dp, int s, const double lo[3], con
     return 1;
 }
 
-/* e^{-(c_i - x)^2 k} for the cells i = 0..n-1 of direction d from lo, c_i their
+/* e^{-(c_i - x)^2 k}, k = 1/2w^2, for the cells i = 0..n-1 of direction d from lo, c_i their
  * centres (uniform spacing h inside the grid): from the cell nearest to x
  * outwards by the Gaussian recurrence e_{i+1} = e_i r_i, r_{i+1} = r_i e^{-2 h^2 k}
  * (two products per cell; rounding grows by an ulp or two per step, ~1e-15 over
  * the few cells of a kernel), every value checked against the cutoff by the
  * caller.  The last cell of a grid may be shorter: its centre is taken exactly. */
-static void gauss_row(const mimas_deposit *dp, int d, int lo, int n, double x, double k,
-                      double *e, size_t stride)
+void dep_gauss_row(const mimas_deposit *dp, int d, int lo, int n, double x, double *e,
+                   size_t stride)
 {
     double h = dp->h[d];
-    int m = (int)floor((x - centre(dp, d, lo)) / h + 0.5);
+    int m = (int)floor((x - dep_centre(dp, d, lo)) / h + 0.5);
     if (m < 0)
         m = 0;
     if (m > n - 1)
         m = n - 1;
-    double c = centre(dp, d, lo + m) - x;
-    double q = exp(-2.0 * h * h * k);
+    double c = dep_centre(dp, d, lo + m) - x, k = dp->wt->inv2w2;
+    double q = dp->gq[d];
     double e0 = exp(-c * c * k);
     e[(size_t)m * stride] = e0;
     /* upwards: (c + h)^2 - c^2 = 2 c h + h^2; downwards the ratio is q / that */
@@ -327,7 +284,7 @@ static void gauss_row(const mimas_deposit *dp, int d, int lo, int n, double x, d
     /* the grid's last cell (its upper edge is the grid's bound): exact */
     const mimas_grid *g = dp->grid;
     if (lo + n == g->n[d] && n > 0 && m != n - 1) {
-        double cl = centre(dp, d, lo + n - 1) - x;
+        double cl = dep_centre(dp, d, lo + n - 1) - x;
         e[(size_t)(n - 1) * stride] = exp(-cl * cl * k);
     }
 }
@@ -350,7 +307,7 @@ static int each_cell(const mimas_deposit *dp, const int lo[3], const int hi[3],
                      mimas_weights *ws)
 {
     const mimas_grid *g = dp->grid;
-    if (reserve(ws, (size_t)(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1)))
+    if (mimas_weights_reserve(ws, (size_t)(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1)))
         return MIMAS_EIO;
     int idx[3];
     for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
@@ -363,78 +320,15 @@ static int each_cell(const mimas_deposit *dp, const int lo[3], const int hi[3],
                     continue;
                 size_t cell = mimas_grid_index(g, idx);
                 if (with_grad)
-                    put_grad(ws, cell, v * scale, gr[0] * scale, gr[1] * scale, gr[2] * scale);
+                    dep_put_grad(ws, cell, v * scale, gr[0] * scale, gr[1] * scale, gr[2] * scale);
                 else
-                    put(ws, cell, v * scale);
+                    dep_put(ws, cell, v * scale);
             }
     ws->has_grad = with_grad;
     return MIMAS_OK;
 }
 
 /* ---- kernels: particles ---------------------------------------------------------- */
-
-/* The Gaussian on a Cartesian x-y-z grid, separable: per direction the 1-D
- * factors e^{-(c - x)^2/2w^2} of the cells within reach, their products in the
- * cells inside the cutoff sphere (the cut is the sum of the squared offsets). */
-static int gauss_sphere_xyz(const mimas_deposit *dp, const double x[3], int with_grad,
-                            mimas_weights *ws)
-{
-    const mimas_weight *wt = dp->wt;
-    double reach = mimas_weight_reach(wt);
-    int lo[3], hi[3];
-    if (!candidate_box(dp, x, reach, lo, hi))
-        return MIMAS_OK;
-    int len[3];
-    for (int d = 0; d < 3; d++)
-        len[d] = hi[d] - lo[d] + 1;
-    if (reserve(ws, (size_t)len[0] * len[1] * len[2]))
-        return MIMAS_EIO;
-    /* factors, squared offsets and gradient factors -(c - x)/w^2, per direction */
-    double stack[3][3][64], *e[3], *q[3], *gf[3];
-    double *heap = NULL;
-    int total = len[0] + len[1] + len[2];
-    if (len[0] > 64 || len[1] > 64 || len[2] > 64) {
-        heap = malloc(3 * (size_t)total * sizeof *heap);
-        if (!heap)
-            return MIMAS_EIO;
-    }
-    for (int d = 0, off = 0; d < 3; d++) {
-        e[d] = heap ? heap + off : stack[d][0];
-        q[d] = heap ? heap + total + off : stack[d][1];
-        gf[d] = heap ? heap + 2 * total + off : stack[d][2];
-        off += len[d];
-        for (int i = 0; i < len[d]; i++) {
-            double dd = centre(dp, d, lo[d] + i) - x[d];
-            q[d][i] = dd * dd;
-            gf[d][i] = -2.0 * wt->inv2w2 * dd;
-        }
-        gauss_row(dp, d, lo[d], len[d], x[d], wt->inv2w2, e[d], 1);
-    }
-    const mimas_grid *g = dp->grid;
-    double coef = wt->coef, sh = coef * wt->shift, R2 = wt->reach2;
-    for (int k = 0; k < len[2]; k++)
-        for (int j = 0; j < len[1]; j++) {
-            double qyz = q[1][j] + q[2][k];
-            if (qyz >= R2)
-                continue;
-            double eyz = coef * e[1][j] * e[2][k];
-            size_t row = (size_t)lo[0] + (size_t)g->n[0] * ((size_t)(lo[1] + j) +
-                                                            (size_t)g->n[1] * (size_t)(lo[2] + k));
-            for (int i = 0; i < len[0]; i++) {
-                if (q[0][i] + qyz >= R2)
-                    continue;
-                double v = e[0][i] * eyz;
-                if (with_grad)
-                    put_grad(ws, row + (size_t)i, v - sh, v * gf[0][i], v * gf[1][j],
-                             v * gf[2][k]);
-                else
-                    put(ws, row + (size_t)i, v - sh);
-            }
-        }
-    free(heap);
-    ws->has_grad = with_grad;
-    return MIMAS_OK;
-}
 
 /* A kernel on any grid, cell by cell: the kernel at the cell centre, its
  * marginal over the directions not gridded, or its azimuthal average. */
@@ -482,12 +376,11 @@ static double kernel_cell(const mimas_deposit *dp, const int idx[3], const doubl
 static int kernel_sphere(const mimas_deposit *dp, const double x[3], const double a[3],
                          int with_grad, mimas_weights *ws)
 {
-    const mimas_grid *g = dp->grid;
     const mimas_weight *wt = dp->wt;
-    if (g->kind == MIMAS_GRID_CARTESIAN && dp->dims == 3 && wt->kind != MIMAS_WEIGHT_LUCY)
-        return gauss_sphere_xyz(dp, x, with_grad, ws);
+    if (dp->gauss_xyz)
+        return mimas_gauss_sphere_xyz(dp, x, with_grad, ws);
     int lo[3], hi[3];
-    if (!candidate_box(dp, a, mimas_weight_reach(wt), lo, hi))
+    if (!dep_candidate_box(dp, a, mimas_weight_reach(wt), lo, hi))
         return MIMAS_OK;
     cell_object o = {x, a, NULL, NULL, 0, 0};
     return each_cell(dp, lo, hi, kernel_cell, &o, with_grad, dp->inv_extent, ws);
@@ -510,7 +403,7 @@ static int bins_sphere(const mimas_deposit *dp, const double x[3], const double 
                        mimas_weights *ws)
 {
     int lo[3], hi[3];
-    if (!candidate_box(dp, a, R, lo, hi))
+    if (!dep_candidate_box(dp, a, R, lo, hi))
         return MIMAS_OK;
     cell_object o = {x, a, NULL, NULL, R, 4.0 / 3.0 * M_PI * R * R * R};
     return each_cell(dp, lo, hi, bins_cell, &o, 0, 1.0, ws);
@@ -522,9 +415,9 @@ int mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, i
     const mimas_grid *g = dp->grid;
     ws->has_grad = 0;
     if (dp->none) {
-        if (reserve(ws, 1))
+        if (mimas_weights_reserve(ws, 1))
             return MIMAS_EIO;
-        put(ws, 0, 1.0 / dp->box_volume);
+        dep_put(ws, 0, 1.0 / dp->box_volume);
         return MIMAS_OK;
     }
     int point = dp->wt->kind == MIMAS_WEIGHT_BINS_CENTER ||
@@ -544,9 +437,9 @@ int mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, i
             size_t cell;
             grid_coords(g, a, q);
             if (cell_of(g, dp->h, q, &cell)) {
-                if (reserve(ws, 1))
+                if (mimas_weights_reserve(ws, 1))
                     return MIMAS_EIO;
-                put(ws, cell, 1.0 / (g->kind == MIMAS_GRID_CARTESIAN
+                dep_put(ws, cell, 1.0 / (g->kind == MIMAS_GRID_CARTESIAN
                                          ? dp->cart_volume
                                          : mimas_grid_cell_volume(g, cell)));
             }
@@ -581,180 +474,6 @@ static double ring_segment(const mimas_deposit *dp, double r, double z, const do
         sum += wgt * mimas_kernel_ring(wt, dp->dims, r, hypot(p[0], p[1]), z - p[2], NULL);
     }
     return sum;
-}
-
-/* The Gaussian's line integral on a Cartesian x-y-z grid, exact, in two kinds of
- * cell.  Where both ends of the segment lie within the cutoff of the cell centre
- * the whole segment counts (the cut sphere is convex): psi is the uncut line
- * integral, an 8-point Gauss-Legendre rule per piece of length <= w, each node a
- * separable product of 1-D factors (the rule is exact to rounding for a Gaussian
- * over at most one width: 3e-16).  Elsewhere near the segment the chord inside
- * the sphere is integrated in closed form (mimas_gauss_line). */
-/* The line integral where the cut sphere about the cell centre cuts the segment
- * (one end inside, the other outside, or both outside and the segment crossing the
- * sphere): with t the foot of the perpendicular along the branch from a, h^2 = e - t^2
- * its distance^2, c = sqrt(R^2 - h^2) the chord's half-length and G(x) = e^{x^2/2w^2}
- * erf(x/sqrt2 w),
- *   e^{-h^2/2w^2} erf(c/sqrt2 w) = e^{-C^2/2} G(c),
- *   e^{-h^2/2w^2} erf(t/sqrt2 w) = e^{-|r - a|^2/2w^2} G(t)  (and the same about b),
- * so psi = coef sqrt(pi/2) w/len [e^{-C^2/2} G(c) + e^{-|r-a|^2/2w^2} G(t)] for the
- * chord [0, t + c], the mirror image for [t - c, len], 2 e^{-C^2/2} G(c) for
- * [t - c, t + c]: G from the table, the exponentials separable. */
-static double shell_cell(const mimas_deposit *dp, int a_in, int b_in, double t, double e,
-                         double len, double ea, double eb)
-{
-    const mimas_weight *wt = dp->wt;
-    double R2 = wt->reach2, h2 = e - t * t;
-    if (h2 < 0)
-        h2 = 0;
-    if (h2 >= R2)
-        return 0.0;
-    double c = sqrt(R2 - h2), k = 1.0 / (M_SQRT2 * wt->w), chord, v;
-    double gc = wt->tail * gtab_eval(dp, c * k);
-    if (a_in) {
-        v = gc + ea * gtab_eval(dp, t * k);
-        chord = t + c;
-    } else if (b_in) {
-        v = gc + eb * gtab_eval(dp, (len - t) * k);
-        chord = len - t + c;
-    } else if (t > 0 && t < len) {
-        v = 2.0 * gc;
-        chord = 2.0 * c;
-    } else {
-        return 0.0;
-    }
-    return wt->coef * (sqrt(M_PI / 2.0) * wt->w * v - wt->shift * chord) / len;
-}
-
-enum { SEG_MAXNODE = 64 };
-
-static int gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const double b[3],
-                             mimas_weights *ws)
-{
-    const mimas_weight *wt = dp->wt;
-    const mimas_grid *g = dp->grid;
-    double bv[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    double l2 = bv[0] * bv[0] + bv[1] * bv[1] + bv[2] * bv[2], len = sqrt(l2);
-    double R = mimas_weight_reach(wt), R2 = wt->reach2;
-    double mid[3] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
-    int lo[3], hi[3];
-    if (!candidate_box(dp, mid, 0.5 * len + R, lo, hi))
-        return MIMAS_OK;
-    int pieces = (int)ceil(len / wt->w);
-    if (pieces < 1)
-        pieces = 1;
-    /* nodes per piece: 6 are exact to rounding up to w/2, 8 up to w */
-    int per = len <= 0.5 * wt->w ? 6 : 8;
-    int nq = per * pieces;
-    if (nq > SEG_MAXNODE)
-        return -1; /* a long segment: cell by cell */
-    int n[3];
-    size_t total = 0;
-    for (int d = 0; d < 3; d++) {
-        n[d] = hi[d] - lo[d] + 1;
-        total += (size_t)n[d];
-    }
-    if (reserve(ws, (size_t)n[0] * n[1] * n[2]))
-        return MIMAS_EIO;
-    /* per direction: offsets from a, squared offsets from a and b, the Gaussian factors
-     * about a and b, and the nodes' factors */
-    double *buf = malloc(((size_t)5 + (size_t)nq) * total * sizeof *buf);
-    if (!buf)
-        return MIMAS_EIO;
-    double *off[3], *qa[3], *qb[3], *ea[3], *eb[3], *ex[3];
-    double sq[SEG_MAXNODE], wq[SEG_MAXNODE];
-    for (int p = 0, k = 0; p < pieces; p++)
-        for (int m = 0; m < per; m++, k++) {
-            gl_node(per == 6 ? gl6_x : gl8_x, per == 6 ? gl6_w : gl8_w, per, m,
-                    (double)p / pieces, (double)(p + 1) / pieces, &sq[k], &wq[k]);
-            wq[k] *= wt->coef;
-        }
-    for (int d = 0, o = 0; d < 3; d++) {
-        off[d] = buf + o;
-        qa[d] = buf + total + o;
-        qb[d] = buf + 2 * total + o;
-        ea[d] = buf + 3 * total + o;
-        eb[d] = buf + 4 * total + o;
-        ex[d] = buf + 5 * total + (size_t)nq * o;
-        for (int i = 0; i < n[d]; i++) {
-            double c = centre(dp, d, lo[d] + i), da = c - a[d], db = c - b[d];
-            off[d][i] = da;
-            qa[d][i] = da * da;
-            qb[d][i] = db * db;
-        }
-        gauss_row(dp, d, lo[d], n[d], a[d], wt->inv2w2, ea[d], 1);
-        gauss_row(dp, d, lo[d], n[d], b[d], wt->inv2w2, eb[d], 1);
-        /* node-major: ex[d][k n_d + i] */
-        for (int k = 0; k < nq; k++)
-            gauss_row(dp, d, lo[d], n[d], a[d] + sq[k] * bv[d], wt->inv2w2,
-                      ex[d] + (size_t)k * n[d], 1);
-        o += n[d];
-    }
-    double eyz[SEG_MAXNODE], sh = wt->coef * wt->shift;
-    double *vrow = malloc((size_t)n[0] * sizeof *vrow);
-    if (!vrow) {
-        free(buf);
-        return MIMAS_EIO;
-    }
-    for (int kz = 0; kz < n[2]; kz++)
-        for (int j = 0; j < n[1]; j++) {
-            double qay = qa[1][j] + qa[2][kz], qby = qb[1][j] + qb[2][kz];
-            double tyz = off[1][j] * bv[1] + off[2][kz] * bv[2];
-            double oyz = off[1][j] * off[1][j] + off[2][kz] * off[2][kz];
-            /* the row (a line along x) is out of reach when the segment's projection
-             * on the y-z plane stays R or more from the row's (y, z) */
-            double pyz = bv[1] * bv[1] + bv[2] * bv[2];
-            double ty = pyz > 0 ? tyz / pyz : 0.0;
-            ty = ty < 0 ? 0.0 : (ty > 1 ? 1.0 : ty);
-            double ry = off[1][j] - ty * bv[1], rz = off[2][kz] - ty * bv[2];
-            if (ry * ry + rz * rz >= R2)
-                continue;
-            for (int k = 0; k < nq; k++)
-                eyz[k] = wq[k] * ex[1][(size_t)k * n[1] + j] * ex[2][(size_t)k * n[2] + kz];
-            /* the uncut line integral along the row: a sum of separable products */
-            for (int i = 0; i < n[0]; i++)
-                vrow[i] = -sh;
-            for (int k = 0; k < nq; k++) {
-                const double *exk = ex[0] + (size_t)k * n[0];
-                double f = eyz[k];
-                for (int i = 0; i < n[0]; i++)
-                    vrow[i] += exk[i] * f;
-            }
-            size_t row = (size_t)lo[0] + (size_t)g->n[0] * ((size_t)(lo[1] + j) +
-                                                            (size_t)g->n[1] * (size_t)(lo[2] + kz));
-            for (int i = 0; i < n[0]; i++) {
-                double v;
-                if (qa[0][i] + qay < R2 && qb[0][i] + qby < R2) {
-                    v = vrow[i]; /* the whole segment within the cutoff */
-                } else {
-                    /* nearest point of the segment: a, b or the foot of the perpendicular */
-                    double t = off[0][i] * bv[0] + tyz, dist2;
-                    double e = off[0][i] * off[0][i] + oyz;
-                    if (t <= 0)
-                        dist2 = qa[0][i] + qay;
-                    else if (t >= l2)
-                        dist2 = qb[0][i] + qby;
-                    else
-                        dist2 = e - t * t / l2;
-                    if (dist2 >= R2)
-                        continue;
-                    if (dp->gtab_ok) {
-                        v = shell_cell(dp, qa[0][i] + qay < R2, qb[0][i] + qby < R2, t / len,
-                                       e, len, ea[0][i] * ea[1][j] * ea[2][kz],
-                                       eb[0][i] * eb[1][j] * eb[2][kz]);
-                    } else {
-                        double d[3] = {off[0][i], centre(dp, 1, lo[1] + j) - a[1],
-                                       centre(dp, 2, lo[2] + kz) - a[2]};
-                        v = mimas_gauss_line(wt, d, bv);
-                    }
-                }
-                if (v != 0.0)
-                    put(ws, row + (size_t)i, v);
-            }
-        }
-    free(vrow);
-    free(buf);
-    return MIMAS_OK;
 }
 
 /* A kernel's line integral at a cell: the object's Cartesian x -> b and axis-frame
@@ -800,15 +519,13 @@ static int segment_cells(const mimas_deposit *dp, const double a[3], const doubl
                          const double aa[3], const double ab[3], const double am[3],
                          double reach, mimas_weights *ws)
 {
-    const mimas_grid *g = dp->grid;
-    if (dp->kernel && g->kind == MIMAS_GRID_CARTESIAN && dp->dims == 3 &&
-        dp->wt->kind != MIMAS_WEIGHT_LUCY) {
-        int rc = gauss_segment_xyz(dp, a, b, ws);
+    if (dp->gauss_xyz) {
+        int rc = mimas_gauss_segment_xyz(dp, a, b, ws);
         if (rc >= 0)
             return rc;
     }
     int lo[3], hi[3];
-    if (!candidate_box(dp, am, reach, lo, hi))
+    if (!dep_candidate_box(dp, am, reach, lo, hi))
         return MIMAS_OK;
     cell_object o = {a, aa, b, ab, 0, 0};
     return dp->kernel ? each_cell(dp, lo, hi, kernel_segment_cell, &o, 0, dp->inv_extent, ws)
@@ -851,7 +568,7 @@ static int walk_segment(const mimas_deposit *dp, const double a[3], const double
             t[j] = t[j - 1];
             t[j - 1] = x;
         }
-    if (reserve(ws, (size_t)nt))
+    if (mimas_weights_reserve(ws, (size_t)nt))
         return -1;
     for (int i = 0; i + 1 < nt; i++) {
         double dt = t[i + 1] - t[i];
@@ -862,7 +579,7 @@ static int walk_segment(const mimas_deposit *dp, const double a[3], const double
             q[d] = a[d] + tm * (b[d] - a[d]);
         size_t cell;
         if (cell_of(g, dp->h, q, &cell))
-            put(ws, cell, dt / dp->cart_volume);
+            dep_put(ws, cell, dt / dp->cart_volume);
     }
     return 1;
 }
@@ -873,9 +590,9 @@ int mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const doub
     const mimas_grid *g = dp->grid;
     ws->has_grad = 0;
     if (dp->none) {
-        if (reserve(ws, 1))
+        if (mimas_weights_reserve(ws, 1))
             return MIMAS_EIO;
-        put(ws, 0, 1.0 / dp->box_volume);
+        dep_put(ws, 0, 1.0 / dp->box_volume);
         return MIMAS_OK;
     }
     if (dp->wt->kind == MIMAS_WEIGHT_BINS_CENTER) {

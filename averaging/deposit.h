@@ -25,6 +25,8 @@ typedef struct mimas_weights {
     double *w;
     double *grad;
     int has_grad;   /* set by the deposit: grad holds the gradients */
+    double *scratch; /* the deposit's own working space */
+    size_t scratch_cap;
 } mimas_weights;
 
 void mimas_weights_free(mimas_weights *ws);
@@ -43,9 +45,8 @@ typedef struct mimas_deposit {
     int gdir[3];           /* Cartesian: the gridded directions, dims of them */
     double inv_extent;     /* kernels: 1 / the box's extent along the directions
                             * they are integrated over (Cartesian; cylindrical z) */
-    int gtab_ok;           /* the Gaussian on x-y-z grids: gtab covers its cutoff */
-    double gtab[64][13];   /* e^{u^2} erf(u) on [0, 4]: Taylor coefficients about the
-                            * centres of 64 intervals (deposit.c) */
+    int gauss_xyz;         /* the Gaussian on an x-y-z grid: separable (deposit_gauss.c) */
+    double gq[3];          /* e^{-2 h^2 / 2w^2} per direction, for its 1-D factors */
 } mimas_deposit;
 
 void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,

@@ -177,24 +177,7 @@ int mimas_fields_parameters(mimas_fields_file *ff, const char *group, const mima
 /* Appends one row (at index k) of a growing dataset of rank 1 + rank(dims). */
 static int append_row(hid_t ds, hsize_t k, int rank, const hsize_t *dims, const double *row)
 {
-    hsize_t ext[5] = {k + 1}, start[5] = {k}, count[5] = {1};
-    for (int d = 0; d < rank; d++) {
-        ext[d + 1] = dims[d];
-        start[d + 1] = 0;
-        count[d + 1] = dims[d];
-    }
-    if (H5Dset_extent(ds, ext) < 0)
-        return -1;
-    hid_t fs = H5Dget_space(ds);
-    hsize_t n = 1;
-    for (int d = 0; d < rank; d++)
-        n *= dims[d];
-    hid_t ms = H5Screate_simple(1, &n, NULL);
-    int rc = H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL) < 0 ||
-             H5Dwrite(ds, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, row) < 0;
-    H5Sclose(ms);
-    H5Sclose(fs);
-    return rc;
+    return h5_append_row(ds, k, rank, dims, H5T_NATIVE_DOUBLE, row);
 }
 
 int mimas_fields_append_frame(mimas_fields_file *ff, const mimas_average *frame, int64_t step,

@@ -837,3 +837,19 @@ double segment_fraction_cylcell(const double a[3], const double b[3], double r0,
     }
     return f;
 }
+
+double overlap_sphere_sphere(double d, double R1, double R2)
+{
+    if (isnan(d) || isnan(R1) || isnan(R2))
+        return NAN;
+    if (!(R1 > 0.0) || !(R2 > 0.0))
+        return 0.0;
+    d = fabs(d);
+    if (d >= R1 + R2)
+        return 0.0;
+    double rmin = fmin(R1, R2);
+    if (d <= fabs(R1 - R2))
+        return FOUR_THIRDS_PI * rmin * rmin * rmin;
+    double g = R1 + R2 - d, m = R1 - R2;
+    return M_PI * g * g * (d * d + 2.0 * d * (R1 + R2) - 3.0 * m * m) / (12.0 * d);
+}

@@ -39,6 +39,13 @@ double overlap_sphere_cylcell(const double c[3], double R, double r0, double r1,
  * space always sum to 1.  A degenerate segment (a == b) counts 1 if the point
  * is inside the cell, 0 if outside (and so 1/2 on a face).  a and b must be
  * finite. */
+/* Volume of the intersection of two balls of radii R1 and R2 whose centres
+ * are d apart (the lens of two spheres; probe spheres of mimas radial):
+ * 0 for d >= R1 + R2, the smaller ball for d <= |R1 - R2|, else
+ * pi (R1 + R2 - d)^2 (d^2 + 2 d (R1 + R2) - 3 (R1 - R2)^2) / (12 d).
+ * Closed form; R <= 0 gives 0. */
+double overlap_sphere_sphere(double d, double R1, double R2);
+
 double segment_fraction_box(const double a[3], const double b[3], const double lo[3],
                             const double hi[3]);
 double segment_fraction_cylcell(const double a[3], const double b[3], double r0, double r1,

@@ -703,7 +703,10 @@ static herr_t read_block(hid_t ds, hid_t memtype, int rank, const hsize_t *start
         mcount *= count[d];
     herr_t rc = 0;
     if (mcount > 0) {
-        hid_t ms = H5Screate_simple(1, &mcount, NULL);
+        /* the memory space has the selection's own shape (the buffer is the block in row
+         * order either way): HDF5 then copies whole rows of each chunk instead of
+         * iterating over elements (a sixth of the run of `mimas average` on a native file) */
+        hid_t ms = H5Screate_simple(rank, count, NULL);
         rc = H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
         if (rc >= 0)
             rc = H5Dread(ds, memtype, ms, fs, H5P_DEFAULT, buf);

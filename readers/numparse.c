@@ -2,10 +2,14 @@
  * whose integer mantissa m is below 2^53 and whose decimal exponent e has
  * |e| <= 22 is exactly m * 10^e or m / 10^-e, both exactly representable
  * operands, so one IEEE operation rounds correctly.  LAMMPS' default "%g"
- * output (6 digits) always takes it; anything else goes to strtod. */
+ * output (6 digits) always takes it; the rest (17-digit numbers) goes to the
+ * standard library's correctly rounded from_chars (mimas_scan_double), and what
+ * that does not read (hexadecimal, '+', out of range) to strtod. */
 #include <config.h>
 
 #include "numparse.h"
+
+#include "numfmt.h"
 
 #include <errno.h>
 #include <math.h>
@@ -110,10 +114,22 @@ int parse_double(char **pp, double *v)
             return 0;
         }
     }
+    /* the token in full by from_chars */
+    char *tend = p;
+    while (!is_end(*tend))
+        tend++;
+    const char *digits_at = start + (*start == '+');
+    double x;
+    if (*digits_at != '+' && !(digits_at > start && *digits_at == '-') &&
+        mimas_scan_double(digits_at, tend, &x) == (int)(tend - digits_at) && isfinite(x)) {
+        *v = x;
+        *pp = tend;
+        return 0;
+    }
     /* slow path: strtod on the token (the line is NUL-terminated) */
     char *end;
     errno = 0;
-    double x = strtod(start, &end);
+    x = strtod(start, &end);
     if (end == start || !is_end(*end) || !isfinite(x))
         return -2;
     *v = x;

@@ -310,6 +310,21 @@ int cli_parse_range(const char *arg, double *lo, double *hi)
     return *hi > *lo ? 0 : -1;
 }
 
+int cli_parse_pair(const char *s, double *a, double *b)
+{
+    const char *colon = strchr(s, ':');
+    if (!colon || colon == s || strlen(colon + 1) == 0 || strlen(s) >= 256)
+        return -1;
+    char first[256];
+    snprintf(first, sizeof first, "%.*s", (int)(colon - s), s);
+    double x, y;
+    if (cli_parse_double(first, &x) || cli_parse_double(colon + 1, &y) || !(x < y))
+        return -1;
+    *a = x;
+    *b = y;
+    return 0;
+}
+
 int cli_parse_long(const char *s, long *v)
 {
     char *end;
@@ -510,6 +525,51 @@ int cli_write_table(const char *path, void (*write)(FILE *fp, const void *ctx), 
     if (bad && !rc)
         rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table", path ? path : "-");
     return rc;
+}
+
+int cli_parse_temperature(const cli_command *cmd, const char *arg, unsigned *bits)
+{
+    static const char *const names[3] = {"s", "r", "phi"};
+    char buf[64];
+    if (strlen(arg) >= sizeof buf)
+        return cli_fail(cmd, 1, "--temperature-components: a comma list of s, r, phi");
+    snprintf(buf, sizeof buf, "%s", arg);
+    *bits = 0;
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        int c = 0;
+        while (c < 3 && strcmp(tok, names[c]))
+            c++;
+        if (c == 3)
+            return cli_fail(cmd, 1, "--temperature-components: '%s' is not s, r or phi", tok);
+        *bits |= 1u << c;
+    }
+    return *bits ? 0 : cli_fail(cmd, 1, "--temperature-components: a comma list of s, r, phi");
+}
+
+int cli_types_option(const cli_command *cmd, cli_types *t, int exclude, const char *arg)
+{
+    if (t->given)
+        return cli_fail(cmd, 1, "--types and --exclude-types exclude each other");
+    t->given = 1;
+    t->exclude = exclude;
+    return cli_parse_types(cmd, exclude ? "exclude-types" : "types", arg, t->types, 64, &t->n);
+}
+
+int cli_positive_option(const cli_command *cmd, const char *opt, const char *arg, double *v)
+{
+    if (cli_parse_double(arg, v) || !(*v > 0))
+        return cli_fail(cmd, 1, "--%s needs a positive number, not '%s'", opt, arg);
+    return 0;
+}
+
+int cli_pair_option(const cli_command *cmd, const char *opt, const char *placeholder,
+                    const char *arg, double *a, double *b)
+{
+    if (cli_parse_pair(arg, a, b))
+        return cli_fail(cmd, 1, "--%s needs %s with the first below the second, not '%s'", opt,
+                        placeholder, arg);
+    return 0;
 }
 
 /* ---- signals: temporary files go with the process ---- */

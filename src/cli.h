@@ -92,6 +92,16 @@ int cli_output_close(cli_output *o, int ok, mimas_error *err);
 int cli_parse_types(const cli_command *cmd, const char *opt, const char *arg, int32_t *types,
                     size_t max, size_t *n);
 
+/* --types L or --exclude-types L (they exclude each other). */
+typedef struct cli_types {
+    int32_t types[64];
+    size_t n;
+    int exclude, given;
+} cli_types;
+/* The option's list into t (exclude: it was --exclude-types); prints the
+ * usage error and returns 1 on a bad list or when both options are given. */
+int cli_types_option(const cli_command *cmd, cli_types *t, int exclude, const char *arg);
+
 /* The frames a command uses: --from T0 --to T1 (simulation times) and
  * --every K of those. */
 typedef struct cli_window {
@@ -123,6 +133,18 @@ int cli_parse_double(const char *s, double *v);
  * returns 0 on success. */
 int cli_parse_range(const char *arg, double *lo, double *hi);
 int cli_parse_long(const char *s, long *v);
+/* --temperature-components: a comma list of s, r, phi into the bits 1, 2,
+ * 4 (MIMAS_TEMP_S, _R, _PHI of axial_profile.h); prints the usage error and
+ * returns 1 otherwise. */
+int cli_parse_temperature(const cli_command *cmd, const char *arg, unsigned *bits);
+/* "A:B" with A < B (finite numbers); returns 0 on success. */
+int cli_parse_pair(const char *s, double *a, double *b);
+/* Option parsers that print the usage error naming --opt and return 1 on a
+ * bad argument, else 0: a positive number; A:B with A < B (placeholder
+ * names what A and B are, e.g. "S0:S1"). */
+int cli_positive_option(const cli_command *cmd, const char *opt, const char *arg, double *v);
+int cli_pair_option(const cli_command *cmd, const char *opt, const char *placeholder,
+                    const char *arg, double *a, double *b);
 /* --threads N (1..1024) into *threads; prints the usage error and returns 1 otherwise. */
 int cli_parse_threads(const cli_command *cmd, const char *arg, int *threads);
 

@@ -93,17 +93,24 @@ void cli_table_header_end(cli_table *t)
 
 void cli_table_double(cli_table *t, double v)
 {
-    separator(t);
-    char buf[MIMAS_NUMFMT_MAX];
-    if (isnan(v))
-        fputs("nan", t->fp);
-    else if (t->o.digits)
+    if (t->o.digits && !isnan(v)) {
+        separator(t);
         fprintf(t->fp, "%.*g", t->o.digits, v);
-    else {
-        /* the shortest decimal that reads back as v (0.025, not 0.025000000000000001):
-         * exact, and several times faster than printf's 15-17 digits */
-        fwrite(buf, 1, mimas_format_double(v, buf), t->fp);
+        return;
     }
+    /* the separator and the shortest decimal that reads back as v (0.025, not
+     * 0.025000000000000001; "nan" for NaN) in one write: exact, and several times faster
+     * than printf's 15-17 digits */
+    char buf[MIMAS_NUMFMT_MAX + 1];
+    size_t n = 0;
+    if (t->col++)
+        buf[n++] = t->o.csv ? ',' : '\t';
+    n += mimas_format_double(v, buf + n);
+#ifdef __GLIBC__
+    fwrite_unlocked(buf, 1, n, t->fp); /* one thread writes a table */
+#else
+    fwrite(buf, 1, n, t->fp);
+#endif
 }
 
 void cli_table_int(cli_table *t, long long v)

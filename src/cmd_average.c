@@ -60,19 +60,10 @@ typedef struct average_args {
     double diameter;
     int errors;
     int threads;
-    int32_t types[64];
-    size_t ntypes;
-    int exclude, types_given, list, per_frame;
+    cli_types types;
+    int list, per_frame;
     cli_table_options table;
 } average_args;
-
-static int parse_types(average_args *a, const char *arg, const char *opt)
-{
-    if (a->types_given)
-        return cli_fail(a->cmd, 1, "--types and --exclude-types exclude each other");
-    a->types_given = 1;
-    return cli_parse_types(a->cmd, opt, arg, a->types, 64, &a->ntypes);
-}
 
 static int on_option(void *ctx, size_t opt, const char *arg)
 {
@@ -85,8 +76,8 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_FROM:
     case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
     case O_EVERY: return cli_window_every(a->cmd, &a->window, arg);
-    case O_TYPES: return parse_types(a, arg, "types");
-    case O_EXCLUDE: a->exclude = 1; return parse_types(a, arg, "exclude-types");
+    case O_TYPES:
+    case O_EXCLUDE: return cli_types_option(a->cmd, &a->types, opt == O_EXCLUDE, arg);
     case O_ERRORS: a->errors = 1; return 0;
     case O_PER_FRAME: a->per_frame = 1; return 0;
     case O_TSV: a->tsv = arg; return 0;
@@ -306,9 +297,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
                 mimas_weight_parse(&o.weight, a.weight, &err)))
         rc = cli_fail(cmd, 1, "%s", err.msg);
     o.grid_none = a.grid && !strcmp(a.grid, "none");
-    o.types = a.types;
-    o.ntypes = a.ntypes;
-    o.exclude = a.exclude;
+    o.types = a.types.types;
+    o.ntypes = a.types.n;
+    o.exclude = a.types.exclude;
     o.spread = a.errors || a.output; /* the HDF5 file always has the spread */
     o.threads = a.threads;
     o.diameter = a.diameter;

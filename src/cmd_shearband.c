@@ -104,6 +104,13 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     return cli_study_table_option(a->cmd, &a->table, &a->study, opt - O_TABLE, arg);
 }
 
+/* cli_frames_first's decision on rank 0: the grid of the first frame, its
+ * spec (ctx, 512 bytes) said on standard error */
+static int choose_grid(void *ctx, const mimas_frame *f, void *data, mimas_error *err)
+{
+    return mimas_band_choose_grid(f, data, ctx, 512, err);
+}
+
 /* Raw particle input: average with bins on an r-z grid chosen from the
  * first frame used (said on standard error). */
 static int average_input(const band_args *a, const cli_inputs *in, mimas_reader *r,
@@ -126,20 +133,14 @@ static int average_input(const band_args *a, const cli_inputs *in, mimas_reader 
     cli_frames_init(&frames, r, &w, input);
     /* the grid comes from the first frame of the selection (rank 0's first
      * frame under MPI, shared with the others) */
-    if (!status)
-        status = cli_frames_next(&frames, &f, err);
     char spec[512] = "";
-    if (mimas_par_rank() == 0 && status == MIMAS_OK)
-        status = mimas_band_choose_grid(&f, &o.grid, spec, sizeof spec, err);
-    if (mimas_par_rank() == 0 && status == MIMAS_END)
-        status = mimas_error_set(err, MIMAS_EDATA, "%s: no frame in the selected time range",
-                                 input);
-    int have = status == MIMAS_OK;
-    status = mimas_par_share(mimas_par_rank() == 0 ? status : MIMAS_OK, &o.grid, sizeof o.grid,
-                             err);
+    int have = 0;
+    if (!status)
+        status = cli_frames_first(&frames, &f, choose_grid, spec, &o.grid, sizeof o.grid, &have,
+                                  err);
     if (!status) {
         status = mimas_average_create(&avg, &o, err);
-        if (!status && mimas_par_rank() == 0)
+        if (!status && mimas_par_rank() == 0 && !in->quiet)
             fprintf(stderr, "mimas shearband: averaging the particles with --weight bins %s\n",
                     spec);
         if (!status && !have)

@@ -14,5 +14,7 @@ extern const cli_command cmd_simulate;
 extern const cli_command cmd_voronoi;
 extern const cli_command cmd_energy;
 extern const cli_command cmd_xdmf;
+extern const cli_command cmd_plugs;
+extern const cli_command cmd_radial;
 
 #endif

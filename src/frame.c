@@ -419,3 +419,15 @@ void mimas_box_min_image(const mimas_box *b, double d[3])
     double k[3];
     mimas_box_min_image_shift(b, d, k);
 }
+
+int mimas_particle_selected(const mimas_particles *p, size_t k, const int32_t *types,
+                            size_t ntypes, int exclude)
+{
+    if (!ntypes)
+        return 1;
+    int32_t t = (p->present & MIMAS_P_TYPE) ? p->type[k] : 1;
+    int listed = 0;
+    for (size_t m = 0; m < ntypes; m++)
+        listed |= types[m] == t;
+    return exclude ? !listed : listed;
+}

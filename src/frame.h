@@ -197,6 +197,13 @@ void mimas_frame_free(mimas_frame *f);
 /* Sets every table to zero rows and no optional quantities; keeps the memory. */
 void mimas_frame_clear(mimas_frame *f);
 
+/* ---- particle selection by type (--types / --exclude-types) ---- */
+/* Whether particle k is used: with ntypes == 0 every particle; else those
+ * whose type is listed (exclude == 0) or not listed (exclude != 0).
+ * Particles without types count as type 1. */
+int mimas_particle_selected(const mimas_particles *p, size_t k, const int32_t *types,
+                            size_t ntypes, int exclude);
+
 /* ---- generic table operations (tab points to one of the three structs) ---- */
 size_t mimas_elem_size(mimas_elem_type t);
 size_t mimas_table_n(const void *tab, const mimas_table_desc *d);

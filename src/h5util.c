@@ -376,3 +376,28 @@ hsize_t h5_extent0(hid_t dset)
     H5Sclose(s);
     return dims[0];
 }
+
+int h5_append_row(hid_t ds, hsize_t k, int rank, const hsize_t *dims, hid_t memtype,
+                  const void *row)
+{
+    hsize_t ext[5] = {k + 1}, start[5] = {k}, count[5] = {1};
+    if (rank < 0 || rank > 4)
+        return -1;
+    for (int d = 0; d < rank; d++) {
+        ext[d + 1] = dims[d];
+        start[d + 1] = 0;
+        count[d + 1] = dims[d];
+    }
+    if (H5Dset_extent(ds, ext) < 0)
+        return -1;
+    hid_t fs = H5Dget_space(ds);
+    hsize_t n = 1;
+    for (int d = 0; d < rank; d++)
+        n *= dims[d];
+    hid_t ms = H5Screate_simple(1, &n, NULL);
+    int rc = H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL) < 0 ||
+             H5Dwrite(ds, memtype, ms, fs, H5P_DEFAULT, row) < 0;
+    H5Sclose(ms);
+    H5Sclose(fs);
+    return rc;
+}

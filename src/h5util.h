@@ -70,6 +70,12 @@ hid_t h5_create_growing(hid_t loc, const char *name, hid_t type, int rank, int n
  * read back in written order). */
 hid_t h5_group_ordered(hid_t loc, const char *path);
 
+/* Writes row k (extending dimension 0 to k + 1) of a growing dataset of
+ * rank 1 + rank, whose trailing dimensions are dims; memtype describes
+ * row's elements (H5T_NATIVE_DOUBLE, ...).  0 on success. */
+int h5_append_row(hid_t ds, hsize_t k, int rank, const hsize_t *dims, hid_t memtype,
+                  const void *row);
+
 /* Current extent of dimension 0 (or 0 on error). */
 hsize_t h5_extent0(hid_t dset);
 

@@ -21,13 +21,16 @@ static const cli_command *const commands[] = {
     &cmd_energy,
     &cmd_xdmf,
     &cmd_disperse,
+    &cmd_plugs,
+    &cmd_radial,
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 
 /* The commands that split their frames over MPI ranks (docs/parallel.md). */
 static int frame_parallel(const char *name)
 {
-    static const char *const names[] = {"average", "voronoi", "shearband", "disperse"};
+    static const char *const names[] = {"average", "voronoi", "shearband", "disperse", "plugs",
+                                        "radial"};
     for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
         if (!strcmp(names[k], name))
             return 1;
@@ -71,8 +74,9 @@ static int dispatch(int argc, char **argv);
 
 int main(int argc, char **argv)
 {
-    /* first: it may re-execute the program (passive OpenMP waiting), which
-     * must happen before MPI starts */
+    /* before MPI starts: cli_start may re-execute the program (OpenMP's
+     * passive waiting), and a process re-executed after MPI_Init cannot
+     * initialise MPI again */
     cli_start(argc, argv);
     /* under mpirun: MPI for the frame-parallel commands (docs/parallel.md) */
     if (mimas_par_init(&argc, &argv)) {

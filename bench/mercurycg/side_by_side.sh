@@ -44,6 +44,9 @@ while [ "$r" -le "$ROUNDS" ]; do
 done
 echo "load after: $(uptime)"
 if [ "${CALLGRIND:-0}" = 1 ]; then
+    # mimas sets OMP_WAIT_POLICY=passive by running itself again, which valgrind's
+    # tool cannot do: set it here
+    export OMP_WAIT_POLICY=passive
     for prog in mcg mim nat; do
         eval "cmd=\$$prog"
         sh -c "valgrind --tool=callgrind --callgrind-out-file=cg.$prog.out $cmd" >/dev/null 2>&1

@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 static const char magic[8] = {'M', 'I', 'M', 'A', 'S', 'C', 'K', '\n'};
-enum { CHECKPOINT_VERSION = 4 };
+enum { CHECKPOINT_VERSION = 5 };
 
 typedef struct ck_header {
     char magic[8];
@@ -22,7 +22,7 @@ typedef struct ck_header {
 /* the particle arrays, in one list for writing and reading */
 #define CK_ARRAYS(X)                                                                         \
     X(id) X(type) X(radius) X(mass) X(inertia) X(liquid) X(x) X(v) X(w) X(f) X(t) X(x_ref) \
-    X(image) X(glued) X(anchor) X(bridges) X(wall_near)
+    X(image) X(glued) X(anchor) X(bridges) X(wall_near) X(held)
 
 static int put(FILE *fp, const void *p, size_t size)
 {

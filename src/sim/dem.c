@@ -16,7 +16,7 @@ void dem_init(dem_system *s)
 
 #define PARTICLE_ARRAYS(X)                                                                 \
     X(id) X(type) X(radius) X(mass) X(inertia) X(liquid) X(x) X(v) X(w) X(f) X(t) X(x_ref) \
-    X(image) X(glued) X(anchor) X(bridges) X(wall_near)
+    X(image) X(glued) X(anchor) X(bridges) X(wall_near) X(held)
 
 void dem_free(dem_system *s)
 {
@@ -84,6 +84,7 @@ size_t dem_add_particle(dem_system *s, int32_t type, double radius, double densi
     memcpy(s->x[k], x, sizeof s->x[k]);
     memcpy(s->x_ref[k], x, sizeof s->x[k]);
     s->glued[k] = -1;
+    memset(s->held[k], 0, sizeof s->held[k]);
     return k;
 }
 

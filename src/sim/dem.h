@@ -82,8 +82,10 @@ typedef struct dem_nlist {
  * every neighbour-list build that dem_neighbours_update decides on: it may
  * remove particles (dem_remove) and append new ones (dem_add_particle); the
  * contact histories of the particles that stay carry over.  body_forces runs
- * at the end of dem_forces and adds forces to the free particles (a fluid:
- * drag, buoyancy). */
+ * in dem_forces after the pair forces, before each particle's forces are
+ * summed: it adds forces to s->f of the free particles (a fluid: drag,
+ * buoyancy) or sets the held forces s->held, which the sum adds to the free
+ * particles every step. */
 typedef struct dem_system dem_system;
 typedef struct dem_hooks {
     void *ctx;
@@ -105,6 +107,8 @@ struct dem_system {
     double (*anchor)[3];               /* glued: position at angle 0 and shift 0 */
     int32_t *bridges;                  /* bridges of each particle, this step */
     uint8_t *wall_near;                /* bit w: within reach of wall w until the next list build */
+    double (*held)[3];                 /* a force a scenario holds between its updates (the gas
+                                        * drag between gas steps), N; 0 for a new particle */
     /* walls; wall-contact history and forces, n x nwalls */
     dem_wall walls[DEM_MAX_WALLS];
     int nwalls;

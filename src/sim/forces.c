@@ -210,6 +210,8 @@ void dem_forces(dem_system *s)
     if (s->bridges_on)
         update_bridges(s);
     pair_forces(s);
+    if (s->hooks.body_forces)
+        s->hooks.body_forces(s->hooks.ctx, s);
 #pragma omp parallel for schedule(static) if (s->n >= DEM_PARALLEL_MIN)
     for (size_t i = 0; i < s->n; i++) {
         double f[3], t[3];
@@ -225,11 +227,9 @@ void dem_forces(dem_system *s)
         if (s->glued[i] < 0) {
             wall_forces(s, i, f, t);
             for (int q = 0; q < 3; q++)
-                f[q] += s->mass[i] * s->gravity[q];
+                f[q] += s->mass[i] * s->gravity[q] + s->held[i][q];
         }
         memcpy(s->f[i], f, sizeof f);
         memcpy(s->t[i], t, sizeof t);
     }
-    if (s->hooks.body_forces)
-        s->hooks.body_forces(s->hooks.ctx, s);
 }

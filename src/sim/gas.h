@@ -6,7 +6,9 @@
  * the grains moving with the velocity field u, with the Carman-Kozeny
  * permeability kappa(phi) = d^2 phi^3/(180 (1 - phi)^2), on a regular grid
  * of cells that covers a tube along z (axis x = y = 0, inlet at z = 0,
- * outlet at z = length).
+ * outlet at z = length) and, below the inlet, the part z >= start of the
+ * feed column pushed into it: the gas is fed at the lower end of the grid
+ * and flows through the packed column into the tube.
  *
  * Discretisation (finite volumes): P and phi at the cell centres, u and kappa
  * on the faces (staggered).  The circular cross-section enters through the
@@ -35,6 +37,7 @@ typedef struct sim_gas_params {
     double v_s;              /* superficial gas velocity fed at the inlet, m/s */
     double d;                /* grain diameter of the permeability law, m */
     double theta;            /* time weighting of the diffusion: 0.5 Crank-Nicolson, 1 implicit */
+    double start;            /* lower end of the grid along z, <= 0 (0: the inlet) */
 } sim_gas_params;
 
 /* Values on the faces normal to one direction: the face grid has one node
@@ -62,6 +65,10 @@ typedef struct sim_gas {
     /* per direction d: the cells in the order of the lines along d, and per
      * cell its face nodes below and above along d (fixed at init) */
     size_t *line_order[3], *face_below[3], *face_above[3];
+    /* the 1-d tent weights of each particle at the last deposit, for
+     * sim_gas_drag_held at the same positions */
+    struct sim_gas_tents *tents;
+    size_t tents_cap, tents_n;
 } sim_gas;
 
 int sim_gas_init(sim_gas *g, const sim_gas_params *p, mimas_error *err);
@@ -77,14 +84,14 @@ double sim_gas_permeability(const sim_gas *g, double phi);
 double sim_gas_effective_viscosity(double eta0, double re);
 
 /* Particle -> grid: the porosity of the cells and the porosity and grain
- * velocity on the faces, from the free particles inside the tube
- * (0 <= z < length). */
+ * velocity on the faces, from the particles on the grid (start <= z <
+ * length), the feed column's included. */
 void sim_gas_deposit(sim_gas *g, const dem_system *s);
 /* Permeabilities from the face porosities (after a deposit, or after the
  * face porosities were set directly). */
 void sim_gas_update_permeability(sim_gas *g);
 /* One gas step of length dt: the source step (grain flux with the grains
- * entering at the inlet with velocity inlet_u, the inlet source and outlet
+ * entering the grid's lower end with velocity inlet_u, the inlet source and outlet
  * sink of v_s), then Crank-Nicolson diffusion along x, y and z.  Finally the
  * pressure is shifted so that the outlet layer is at 0 (the equation does
  * not change under a constant shift; the outlet is open to the ambient). */
@@ -92,8 +99,12 @@ void sim_gas_step(sim_gas *g, double dt, double inlet_u);
 /* The diffusion part alone (no sources, no shift): for tests. */
 void sim_gas_diffuse(sim_gas *g, double dt);
 /* Grid -> particles: adds the drag -V grad P/(1 - phi) to the free particles
- * inside the tube. */
+ * on the grid. */
 void sim_gas_drag(const sim_gas *g, dem_system *s);
+/* The same drag, written into held[k] (0 for the particles it does not act
+ * on), with the weights kept by the last sim_gas_deposit: call it with the
+ * positions of that deposit.  The numbers are those of sim_gas_drag. */
+void sim_gas_drag_held(const sim_gas *g, const dem_system *s, double (*held)[3]);
 /* Superficial (Darcy) gas velocity -kappa grad P/eta at the cell centres:
  * the mean of the fluxes through the two faces along each axis. */
 void sim_gas_velocity(const sim_gas *g, double (*v)[3]);

@@ -85,6 +85,7 @@ void sim_gas_free(sim_gas *g)
     free(g->porosity);
     free(g->scratch);
     free(g->solid);
+    free(g->tents);
     for (int d = 0; d < 3; d++) {
         free(g->line_order[d]);
         free(g->face_below[d]);
@@ -152,15 +153,16 @@ int sim_gas_init(sim_gas *g, const sim_gas_params *p, mimas_error *err)
 {
     memset(g, 0, sizeof *g);
     if (!(p->radius > 0 && p->length > 0 && p->across >= 1 && p->axial >= 2 && p->P0 > 0 &&
-          p->eta > 0 && p->d > 0 && p->theta >= 0.5 && p->theta <= 1))
+          p->eta > 0 && p->d > 0 && p->theta >= 0.5 && p->theta <= 1 && p->start <= 0 &&
+          p->start > -p->length))
         return mimas_error_set(err, MIMAS_EUSAGE, "gas grid: bad parameters");
     g->p = *p;
     g->n[0] = g->n[1] = p->across;
     g->n[2] = p->axial;
     g->lo[0] = g->lo[1] = -p->radius;
-    g->lo[2] = 0;
+    g->lo[2] = p->start;
     g->h[0] = g->h[1] = 2 * p->radius / (double)p->across;
-    g->h[2] = p->length / (double)p->axial;
+    g->h[2] = (p->length - p->start) / (double)p->axial;
     size_t nc = sim_gas_cells(g);
     g->fraction = malloc(nc * sizeof *g->fraction);
     g->pressure = calloc(nc, sizeof *g->pressure);

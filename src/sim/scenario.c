@@ -266,9 +266,9 @@ void sim_scenario_defaults(sim_scenario *s, int type)
     s->gas_pressure = 101325;
     s->gas_viscosity = 1.82e-5;   /* air; Re = 65 gives the effective 0.0672 cP */
     s->gas_reynolds = 65;
-    s->gas_cells_across = 2;
+    s->gas_cells_across = 1;
     s->gas_cell_length = 0.0035;
-    s->gas_every = 1;
+    s->gas_every = 10;
     s->gas_theta = 1;
     s->fluid_density = 1.2;
     s->drag_law = 1;              /* schiller-naumann */

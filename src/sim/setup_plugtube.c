@@ -5,8 +5,9 @@
  * column (type 2, copies of one periodic block) moves up at the feed speed;
  * its grains are released at z = 0 and become type 1.  Grains beyond the
  * outlet (or fallen out below the inlet) are removed when the neighbour list
- * is rebuilt.  The gas is the gas-pressure model (gas.h), a fluid at rest
- * (drag.h) or none. */
+ * is rebuilt.  The gas is the gas-pressure model (gas.h; its grid covers the
+ * tube and the part of the feed column just below the inlet), a fluid at
+ * rest (drag.h) or none. */
 #include <config.h>
 
 #include <gsl/gsl_rng.h>
@@ -111,12 +112,16 @@ static void tube_forces(void *ctx, dem_system *s)
     }
     if (t->model != SIM_GAS_PRESSURE)
         return;
-    /* the gas advances to the time of the positions the forces are for */
-    if (s->force_step > 0 && s->force_step % t->gas_every == 0) {
+    /* every gas_every steps the gas advances to the time of the positions the
+     * forces are for, and the drag on each grain is computed and held (dem_forces
+     * adds it every step) until the next gas step (docs/simulate.md: why that is stable); the first
+     * forces of a run take the drag of the field set up */
+    if (s->force_step % t->gas_every == 0) {
         sim_gas_deposit(&t->gas, s);
-        sim_gas_step(&t->gas, (double)t->gas_every * t->dt, t->feeding ? t->feed_speed : 0);
+        if (s->force_step > 0)
+            sim_gas_step(&t->gas, (double)t->gas_every * t->dt, t->feeding ? t->feed_speed : 0);
+        sim_gas_drag_held(&t->gas, s, s->held);
     }
-    sim_gas_drag(&t->gas, s);
 }
 
 /* fill_count grains on a jittered lattice from the outlet end down */
@@ -193,11 +198,20 @@ int sim_setup_plugtube(dem_system *s, const sim_scenario *sc, sim_plan *plan, mi
     if (!rc)
         rc = dem_add_wall(s, &wall, err);
     if (!rc && t->model == SIM_GAS_PRESSURE) {
+        /* the cells of the tube, and below the inlet as many whole cells as the
+         * feed column always fills (it reaches at least `keep` below the inlet):
+         * the gas is fed below the column and flows through it, as in Strauß
+         * (2005, Sec. 5.1), so that the grains entering the tube are lifted by
+         * the pressure gradient across a packed bed */
         size_t axial = (size_t)lround(sc->tube_length / sc->gas_cell_length);
+        axial = axial < 2 ? 2 : axial;
+        double h = t->length / (double)axial;
+        size_t below = t->feeding ? (size_t)floor(t->keep / h * (1 + 1e-12)) : 0;
         sim_gas_params gp = {t->radius, t->length, (size_t)sc->gas_cells_across,
-                             axial < 2 ? 2 : axial, sc->gas_pressure,
+                             axial + below, sc->gas_pressure,
                              sim_gas_effective_viscosity(sc->gas_viscosity, sc->gas_reynolds),
-                             sc->gas_velocity, sc->diameter * sc->coarse_grain, sc->gas_theta};
+                             sc->gas_velocity, sc->diameter * sc->coarse_grain, sc->gas_theta,
+                             -(double)below * h};
         rc = sim_gas_init(&t->gas, &gp, err);
         if (!rc)
             sim_gas_deposit(&t->gas, s);

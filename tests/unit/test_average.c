@@ -345,15 +345,20 @@ static void test_gauss_integrates_mass(void **state)
 
 /* The contact stress on an x-y-z grid is f (x) b times the exact line integral at
  * each cell centre (mimas_kernel_line, itself checked against quadrature in
- * test_weight), for branches shorter and longer than w, both kernels. */
+ * test_weight), for branches shorter and longer than w, both kernels, cutoffs 2.5 to 5
+ * and lengths on both sides of each change of the quadrature rule (docs/fields.md:
+ * 8 nodes up to w (0.75 w beyond cutoff 3), 10 up to 1.5 w, 12 up to 2 w, then pieces):
+ * the documented relative error, 3e-16, with room for rounding. */
 static void test_gauss_contact_cells(void **state)
 {
     (void)state;
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    const char *specs[2] = {"gauss:w=0.001", "gauss:w=0.0008,shift,cutoff=2.5"};
-    const double lens[4] = {0.0003, 0.001, 0.0019, 0.0042};
-    for (int k = 0; k < 2; k++)
-        for (int l = 0; l < 4; l++) {
+    const char *specs[4] = {"gauss:w=0.001", "gauss:w=0.0008,shift,cutoff=2.5",
+                            "gauss:w=0.001,cutoff=5", "gauss:w=0.0009,cutoff=4"};
+    const double lens[12] = {0.0003, 0.001, 0.0019, 0.0042, 0.00074, 0.00076, 0.00099,
+                             0.00101, 0.00149, 0.00151, 0.00201, 0.0031};
+    for (int k = 0; k < 4; k++)
+        for (int l = 0; l < 12; l++) {
             double pos[2][3];
             for (int d = 0; d < 3; d++)
                 pos[0][d] = 0.004 + 0.002 * gsl_rng_uniform(rng);

@@ -83,7 +83,7 @@ static void test_disk_rect_area(void **state)
 
 static void make_gas(sim_gas *g, size_t across, size_t axial, double length)
 {
-    sim_gas_params p = {0.0035, length, across, axial, 101325, 6.72e-5, 1.0, 0.0014, 0.5};
+    sim_gas_params p = {0.0035, length, across, axial, 101325, 6.72e-5, 1.0, 0.0014, 0.5, 0};
     mimas_error err;
     if (sim_gas_init(g, &p, &err))
         fail_msg("%s", err.msg);

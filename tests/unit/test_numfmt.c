@@ -1,5 +1,7 @@
 /* Shortest round-trip text for doubles: every value reads back (strtod) as the
- * same double, and no shorter printf("%.Ng") form does. */
+ * same double, and no shorter printf("%.Ng") form does; the text is the same as
+ * that of an independent implementation (double-conversion, numfmt_reference.cc),
+ * which also picks the shortest form nearest to the value. */
 #include <config.h>
 
 #include <setjmp.h>
@@ -16,6 +18,24 @@
 #include <string.h>
 
 #include "numfmt.h"
+
+size_t reference_shortest(double v, char *buf, int size);
+
+/* the same text as the reference, and it reads back as v */
+static void same_as_reference(double v)
+{
+    char buf[MIMAS_NUMFMT_MAX], ref[64];
+    size_t n = mimas_format_double(v, buf);
+    assert_int_equal(n, strlen(buf));
+    reference_shortest(v, ref, sizeof ref);
+    if (strcmp(buf, ref) != 0)
+        fail_msg("%.17g printed as '%s', the reference prints '%s'", v, buf, ref);
+    if (isfinite(v)) {
+        double back = strtod(buf, NULL);
+        if (memcmp(&back, &v, sizeof v) != 0)
+            fail_msg("%.17g printed as '%s' reads back as %.17g", v, buf, back);
+    }
+}
 
 /* significant digits of a decimal string (mantissa digits without leading zeros) */
 static int digits(const char *s)
@@ -90,7 +110,48 @@ static void test_special(void **state)
     for (size_t k = 0; k < sizeof edge / sizeof edge[0]; k++) {
         check(edge[k]);
         check(-edge[k]);
+        same_as_reference(edge[k]);
+        same_as_reference(-edge[k]);
     }
+    same_as_reference(NAN);
+    same_as_reference(INFINITY);
+    same_as_reference(-INFINITY);
+    same_as_reference(-0.0);
+    /* every power of two and of ten, and their neighbours (the uneven gaps) */
+    for (int e = -1074; e <= 1023; e++)
+        for (int d = -1; d <= 1; d++) {
+            double x = nextafter(ldexp(1.0, e), d < 0 ? 0.0 : (d > 0 ? INFINITY : ldexp(1.0, e)));
+            same_as_reference(x);
+        }
+    for (int e = -323; e <= 308; e++) {
+        double x = pow(10.0, e);
+        same_as_reference(x);
+        same_as_reference(nextafter(x, 0.0));
+        same_as_reference(nextafter(x, INFINITY));
+    }
+}
+
+/* millions of random bit patterns and decimals of every length: the reference's text */
+static void test_against_reference(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(rng, 2024);
+    for (int k = 0; k < 2000000; k++) {
+        uint64_t bits = ((uint64_t)gsl_rng_get(rng) << 32) ^ (uint64_t)gsl_rng_get(rng);
+        double v;
+        memcpy(&v, &bits, sizeof v);
+        same_as_reference(v);
+    }
+    char text[64];
+    for (int k = 0; k < 500000; k++) {
+        /* n significant digits: values whose shortest form has exactly those */
+        int n = 1 + (int)gsl_rng_uniform_int(rng, 17);
+        snprintf(text, sizeof text, "%.*e", n - 1,
+                 gsl_rng_uniform_pos(rng) * pow(10.0, (double)gsl_rng_uniform_int(rng, 60) - 30));
+        same_as_reference(strtod(text, NULL));
+    }
+    gsl_rng_free(rng);
 }
 
 /* random bit patterns (all exponents) and random values of field-like magnitude */
@@ -115,6 +176,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_special),
         cmocka_unit_test(test_random),
+        cmocka_unit_test(test_against_reference),
     };
     return cmocka_run_group_tests_name("numfmt", tests, NULL, NULL);
 }

@@ -22,7 +22,8 @@ static void same_as_strtod(const char *text)
     snprintf(buf, sizeof buf, "%s", text);
     char *p = buf;
     double v;
-    assert_int_equal(parse_double(&p, &v), 0);
+    if (parse_double(&p, &v) != 0)
+        fail_msg("'%s' is not read", text);
     double ref = strtod(text, NULL);
     if (memcmp(&v, &ref, sizeof v) != 0)
         fail_msg("'%s': %.17g, strtod %.17g", text, v, ref);
@@ -57,6 +58,42 @@ static void test_random_numbers(void **state)
     gsl_rng_free(rng);
 }
 
+/* The numbers the fast path leaves to from_chars: 17 to 25 significant digits,
+ * numbers a hair off the midpoint of two neighbouring doubles (rounding's hard
+ * cases, from the exact long double midpoint), signs, subnormals and the edges of
+ * the range (which strtod takes). */
+static void test_long_and_halfway(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(rng, 7);
+    char text[128];
+    for (int k = 0; k < 300000; k++) {
+        uint64_t bits = ((uint64_t)gsl_rng_get(rng) << 32) ^ (uint64_t)gsl_rng_get(rng);
+        double x;
+        memcpy(&x, &bits, sizeof x);
+        if (!isfinite(x))
+            continue;
+        int n = 17 + (int)gsl_rng_uniform_int(rng, 9);
+        snprintf(text, sizeof text, "%.*e", n - 1, x);
+        same_as_strtod(text);
+        long double mid = 0.5L * ((long double)x + (long double)nextafter(x, INFINITY));
+        if (isfinite((double)mid)) {
+            snprintf(text, sizeof text, "%.*Le", 17 + (int)gsl_rng_uniform_int(rng, 6), mid);
+            same_as_strtod(text);
+        }
+        snprintf(text, sizeof text, "%+.17g", x);
+        same_as_strtod(text);
+    }
+    const char *cases[] = {"2.4703282292062327e-324", "2.4703282292062328e-324", "1e-400",
+                           "4.9406564584124654e-324", "1.7976931348623158e308",
+                           "0.30000000000000000555111512312578270211815834045410156250001",
+                           "+0.1", "-0.0e0", "9007199254740992.9999999999"};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++)
+        same_as_strtod(cases[k]);
+    gsl_rng_free(rng);
+}
+
 static void test_tokens_and_errors(void **state)
 {
     (void)state;
@@ -81,6 +118,15 @@ static void test_tokens_and_errors(void **state)
     assert_int_equal(parse_double(&p, &v), -2); /* overflow */
     skip_token(&p);
     assert_int_equal(parse_double(&p, &v), -1); /* end of line */
+    char signs[] = "+-1.25 -+3 0x1p3 1.7976931348623159e308";
+    p = signs;
+    assert_int_equal(parse_double(&p, &v), -2);
+    skip_token(&p);
+    assert_int_equal(parse_double(&p, &v), -2);
+    skip_token(&p);
+    assert_int_equal(parse_double(&p, &v), 0); /* strtod reads hexadecimal */
+    assert_true(v == 8.0);
+    assert_int_equal(parse_double(&p, &v), -2); /* rounds to infinity */
     char ints[] = "12.0 99999999999999999999";
     p = ints;
     assert_int_equal(parse_int64(&p, &i), -2);
@@ -93,6 +139,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fixed_cases),
         cmocka_unit_test(test_random_numbers),
+        cmocka_unit_test(test_long_and_halfway),
         cmocka_unit_test(test_tokens_and_errors),
     };
     return cmocka_run_group_tests_name("numparse", tests, NULL, NULL);

@@ -1,0 +1,61 @@
+/* Internal to the deposits (deposit.c, deposit_gauss.c): the weight list's
+ * storage, the grid's cells and the Gaussian's separable fast paths on x-y-z
+ * grids. */
+#ifndef MIMAS_DEPOSIT_IMPL_H
+#define MIMAS_DEPOSIT_IMPL_H
+
+#include <stddef.h>
+
+#include "deposit.h"
+
+/* Room for k more entries; MIMAS_EIO when out of memory. */
+int mimas_weights_reserve(mimas_weights *ws, size_t k);
+/* n doubles of scratch space kept with the list (NULL when out of memory). */
+double *mimas_weights_scratch(mimas_weights *ws, size_t n);
+
+static inline void dep_put(mimas_weights *ws, size_t cell, double w)
+{
+    ws->cell[ws->n] = cell;
+    ws->w[ws->n] = w;
+    ws->n++;
+}
+
+static inline void dep_put_grad(mimas_weights *ws, size_t cell, double w, double g0, double g1,
+                                double g2)
+{
+    double *g = &ws->grad[3 * ws->n];
+    g[0] = g0;
+    g[1] = g1;
+    g[2] = g2;
+    dep_put(ws, cell, w);
+}
+
+/* The centre of cell i along direction d (the last cell's upper edge is the grid's). */
+static inline double dep_centre(const mimas_deposit *dp, int d, int i)
+{
+    const mimas_grid *g = dp->grid;
+    double lo = g->lo[d] + dp->h[d] * i, hi = i + 1 == g->n[d] ? g->hi[d] : lo + dp->h[d];
+    return 0.5 * (lo + hi);
+}
+/* The index box of the cells that may meet the ball of radius reach about the
+ * axis-frame point a; 0 if there are none. */
+int dep_candidate_box(const mimas_deposit *dp, const double a[3], double reach, int lo[3],
+                      int hi[3]);
+/* Cell index range [i0, i1] of direction d overlapping [lo, hi]; 0 if none. */
+int dep_index_range(const mimas_deposit *dp, int d, double lo, double hi, int *i0, int *i1);
+/* e^{-(c_i - x)^2 / 2w^2} for the n cells of direction d from cell lo (stride apart). */
+void dep_gauss_row(const mimas_deposit *dp, int d, int lo, int n, double x, double *e,
+                   size_t stride);
+
+/* The Gaussian on a Cartesian x-y-z grid (dp->gauss_xyz): a particle (its value and
+ * gradient at the cell centres) and a segment's exact line integral.  The segment
+ * returns -1 when it leaves it to the cell-by-cell closed form (a branch longer
+ * than the quadrature covers, or factors beyond the range of doubles). */
+int mimas_gauss_sphere_xyz(const mimas_deposit *dp, const double x[3], int with_grad,
+                           mimas_weights *ws);
+int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const double b[3],
+                            mimas_weights *ws);
+/* Makes the table the segment's closed form uses (once; thread-safe). */
+void mimas_gauss_tables(void);
+
+#endif
