@@ -161,7 +161,21 @@ int mimas_tube_setup_from(mimas_tube_setup *s, const char *axis_spec, double rad
                           mimas_error *err)
 {
     int rc = mimas_tube_geom_resolve(&s->geom, axis_spec, radius, &f->tube, err);
-    return rc ? rc
-              : mimas_tube_extent(&s->geom, f, types, ntypes, exclude, &s->s_min, &s->s_max,
-                                  &s->diameter, err);
+    if (!rc)
+        rc = mimas_tube_extent(&s->geom, f, types, ntypes, exclude, &s->s_min, &s->s_max,
+                               &s->diameter, err);
+    if (rc == MIMAS_EDATA) { /* none selected: the command may not need them */
+        s->s_min = s->s_max = s->diameter = NAN;
+        rc = MIMAS_OK;
+    }
+    return rc;
+}
+
+int mimas_tube_defaults_known(double d, double s0, double s1, mimas_error *err)
+{
+    if (d > 0 && isfinite(d) && isfinite(s0) && isfinite(s1))
+        return MIMAS_OK;
+    return mimas_error_set(err, MIMAS_EDATA, "no particles (of the selected types) with a "
+                           "positive radius in the first frame: give --diameter%s, or --from a "
+                           "time when there are", isfinite(s0) && isfinite(s1) ? "" : " and --range");
 }

@@ -80,8 +80,12 @@ int mimas_tube_extent(const mimas_tube_geom *g, const mimas_frame *f, const int3
 
 /* What a tube command takes from its first frame: the geometry
  * (mimas_tube_geom_resolve with the frame's tube) and the selected
- * particles' extent and mean diameter (mimas_tube_extent); plain data, the
- * same on every MPI rank once rank 0 has decided it. */
+ * particles' extent and mean diameter (mimas_tube_extent; all three NaN
+ * when the first frame has none of them -- a plug conveying run whose first
+ * frame holds only the feed column -- and the command needs them only where
+ * no option and no recorded tube length gives the value: see
+ * mimas_tube_defaults_known); plain data, the same on every MPI rank once
+ * rank 0 has decided it. */
 typedef struct mimas_tube_setup {
     mimas_tube_geom geom;
     double s_min, s_max, diameter;
@@ -89,6 +93,10 @@ typedef struct mimas_tube_setup {
 int mimas_tube_setup_from(mimas_tube_setup *s, const char *axis_spec, double radius,
                           const mimas_frame *f, const int32_t *types, size_t ntypes, int exclude,
                           mimas_error *err);
+/* MIMAS_OK if the diameter d and the axial range s0..s1 a command goes on
+ * with are known, else MIMAS_EDATA: no selected particles in the first frame
+ * to take them from, and which options give them. */
+int mimas_tube_defaults_known(double d, double s0, double s1, mimas_error *err);
 
 #ifdef __cplusplus
 }

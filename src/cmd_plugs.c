@@ -238,7 +238,8 @@ static int setup(void *ctx, const void *data, mimas_error *err)
         d = a->diameter;
     double s0 = a->has_range ? a->s0 : isfinite(o->geom.length) ? 0.0 : smin;
     double s1 = a->has_range ? a->s1 : isfinite(o->geom.length) ? o->geom.length : smax;
-    if ((rc = mimas_slices_set(&o->slices, s0, s1, a->slice > 0 ? a->slice : 0.5 * d, err)))
+    if ((rc = mimas_tube_defaults_known(d, s0, s1, err)) ||
+        (rc = mimas_slices_set(&o->slices, s0, s1, a->slice > 0 ? a->slice : 0.5 * d, err)))
         return rc;
     o->temperature = a->temperature;
     o->types = a->types.types;

@@ -125,6 +125,12 @@ static int setup(void *ctx, const void *data, mimas_error *err)
     int rc;
     if (a->diameter > 0)
         d = a->diameter;
+    int known = isfinite(o.geom.length);
+    double lo = known ? 0.0 : smin, hi = known ? o.geom.length : smax;
+    int given = a->in_plugs ? a->has_range : a->has_at;
+    double g0 = a->in_plugs ? a->s0 : a->at0, g1 = a->in_plugs ? a->s1 : a->at1;
+    if ((rc = mimas_tube_defaults_known(d, given ? g0 : lo, given ? g1 : hi, err)))
+        return rc;
     o.probe = a->probe > 0 ? a->probe : 0.25 * d;
     o.dr = a->dr > 0 ? a->dr : 0.5 * o.probe;
     o.temperature = a->temperature;
@@ -137,8 +143,6 @@ static int setup(void *ctx, const void *data, mimas_error *err)
     double spread = a->spread > 0 ? a->spread : 1.5 * d;
     size_t P = (size_t)a->planes;
     u->spacing = P > 1 ? spread / (double)(P - 1) : spread;
-    int known = isfinite(o.geom.length);
-    double lo = known ? 0.0 : smin, hi = known ? o.geom.length : smax;
     if (a->in_plugs) {
         mimas_axial_options ao;
         memset(&ao, 0, sizeof ao);
