@@ -11,6 +11,7 @@
 #include "fields.h"
 #include "h5util.h"
 #include "output_h5.h"
+#include "parameters_h5.h"
 
 struct mimas_fieldset {
     char name[4096];
@@ -19,6 +20,7 @@ struct mimas_fieldset {
     hid_t file;                 /* a field file, or -1 */
     double *mean, *sd, *count;  /* an average in memory: cells x mimas_fields_count() */
     int cyl;
+    mimas_parameters params;
 };
 
 static const char *const coord_names[2][3] = {{"x", "y", "z"}, {"r", "phi", "z"}};
@@ -48,6 +50,7 @@ void mimas_fieldset_close(mimas_fieldset *fs)
     free(fs->mean);
     free(fs->sd);
     free(fs->count);
+    mimas_parameters_free(&fs->params);
     free(fs);
 }
 
@@ -59,6 +62,17 @@ const char *mimas_fieldset_name(const mimas_fieldset *fs)
 const mimas_fieldset_grid *mimas_fieldset_grid_of(const mimas_fieldset *fs)
 {
     return &fs->grid;
+}
+
+const mimas_parameters *mimas_fieldset_parameters(const mimas_fieldset *fs)
+{
+    return &fs->params;
+}
+
+int mimas_fieldset_set_parameters(mimas_fieldset *fs, const mimas_parameters *ps,
+                                  mimas_error *err)
+{
+    return mimas_parameters_copy(&fs->params, ps, err);
 }
 
 /* ---- from an average in memory ---- */
@@ -248,6 +262,8 @@ int mimas_fieldset_open(mimas_fieldset **out, const char *path, mimas_error *err
     }
     if (!rc)
         rc = read_grid(fs, err);
+    if (!rc && parameters_read_h5(fs->file, "scenario", &fs->params))
+        rc = mimas_error_set(err, MIMAS_EDATA, "%s: cannot read /parameters/scenario", path);
     h5_quiet_end(&q);
     if (rc) {
         mimas_fieldset_close(fs);

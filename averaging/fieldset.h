@@ -11,6 +11,7 @@
 
 #include "average.h"
 #include "error.h"
+#include "parameters.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -46,6 +47,12 @@ int mimas_fieldset_from_average(mimas_fieldset **fs, const mimas_average *avg, c
 void mimas_fieldset_close(mimas_fieldset *fs);
 
 const char *mimas_fieldset_name(const mimas_fieldset *fs);
+/* The run parameters the fields were made from: a field file's
+ * /parameters/scenario (mimas average copies the input's), or those given
+ * to a set from memory with mimas_fieldset_set_parameters; else empty. */
+const mimas_parameters *mimas_fieldset_parameters(const mimas_fieldset *fs);
+int mimas_fieldset_set_parameters(mimas_fieldset *fs, const mimas_parameters *ps,
+                                  mimas_error *err);
 const mimas_fieldset_grid *mimas_fieldset_grid_of(const mimas_fieldset *fs);
 /* 1 if the set holds the field (docs/fields.md names). */
 int mimas_fieldset_has(const mimas_fieldset *fs, const char *field);

@@ -16,6 +16,7 @@
 #include "tmpfiles.h"
 #include "xdmf.h"
 #include "outfile.h"
+#include "parameters_h5.h"
 
 /* Dimensions of a field dataset: (n2, n1, n0), direction 0 fastest like the
  * cell index. */
@@ -161,6 +162,16 @@ void mimas_fields_abort(mimas_fields_file *ff)
     h5_quiet_end(&ff->quiet);
     remove(ff->tmp);
     release_names(ff);
+}
+
+int mimas_fields_parameters(mimas_fields_file *ff, const char *group, const mimas_parameters *ps,
+                            mimas_error *err)
+{
+    h5_quiet_begin(&ff->quiet);
+    int rc = parameters_write_h5(ff->file, group, ps);
+    h5_quiet_end(&ff->quiet);
+    return rc ? mimas_error_set(err, MIMAS_EIO, "%s: cannot write the run parameters", ff->path)
+              : MIMAS_OK;
 }
 
 /* Appends one row (at index k) of a growing dataset of rank 1 + rank(dims). */

@@ -9,6 +9,7 @@
 
 #include "average.h"
 #include "error.h"
+#include "parameters.h"
 
 #define MIMAS_FIELDS_VERSION_MAJOR 1
 #define MIMAS_FIELDS_VERSION_MINOR 1
@@ -25,6 +26,10 @@ int mimas_fields_open(mimas_fields_file **ff, const char *path, const unsigned c
  * /frames (--per-frame). */
 int mimas_fields_append_frame(mimas_fields_file *ff, const mimas_average *frame, int64_t step,
                               double time, mimas_error *err);
+/* Copies the run parameters of the input (mimas_reader_parameters) into
+ * /parameters/GROUP of the field file, laid out as in the native file. */
+int mimas_fields_parameters(mimas_fields_file *ff, const char *group, const mimas_parameters *ps,
+                            mimas_error *err);
 /* Writes the time average, the grid and the provenance (the command line,
  * may be NULL), closes and renames the files into place; frees ff. */
 int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const char *provenance,

@@ -31,6 +31,8 @@ typedef struct reader_backend {
     int (*skip)(void *state, mimas_error *err);
     /* frames the inputs hold, when the format says (0: unknown); may be NULL */
     size_t (*total)(void *state);
+    /* the run parameters of the inputs (may be NULL: the format has none) */
+    const mimas_parameters *(*parameters)(void *state);
 } reader_backend;
 
 /* Expands '*' patterns in a list of file names (sorted matches); names

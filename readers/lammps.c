@@ -273,4 +273,5 @@ static const char *source(void *state)
 }
 
 const reader_backend reader_lammps = {"lammps", "LAMMPS/LIGGGHTS text dump", probe, open_state,
-                                      next, skipped, close_state, source, peek, skip, NULL};
+                                      next, skipped, close_state, source, peek, skip, NULL,
+                                      NULL};

@@ -926,4 +926,4 @@ static const char *source(void *state)
 
 const reader_backend reader_mercury = {"mercury", "MercuryDPM (.data, .fstat)", probe,
                                        open_stream, next, skipped, close_stream, source, NULL,
-                                       NULL, NULL};
+                                       NULL, NULL, NULL};

@@ -19,6 +19,7 @@
 #include "h5util.h"
 #include "id_index.h"
 #include "native_layout.h"
+#include "parameters_h5.h"
 
 typedef struct read_flat {
     int present;
@@ -49,6 +50,12 @@ struct mimas_native {
     int64_t *ids;
     size_t ids_cap;
     char creator[96];
+    mimas_parameters params;     /* /parameters/scenario */
+    size_t nobs;                 /* /observables/all/NAME but particle_count */
+    struct native_obs {
+        char name[64], unit[24];
+        hid_t ds;
+    } *obs;
 };
 
 /* A data error: "PATH: message". */
@@ -536,6 +543,11 @@ void mimas_native_close(mimas_native *r)
     for (int k = 0; k < 9; k++)
         if (ids[k] > 0)
             H5Dclose(ids[k]);
+    for (size_t k = 0; k < r->nobs; k++)
+        if (r->obs[k].ds > 0)
+            H5Dclose(r->obs[k].ds);
+    free(r->obs);
+    mimas_parameters_free(&r->params);
     if (r->file > 0)
         H5Fclose(r->file);
     h5_quiet_end(&q);
@@ -544,6 +556,8 @@ void mimas_native_close(mimas_native *r)
     free(r->path);
     free(r);
 }
+
+static int open_metadata(mimas_native *r, mimas_error *err);
 
 int mimas_native_open(mimas_native **out, const char *path, mimas_error *err)
 {
@@ -621,6 +635,8 @@ int mimas_native_open(mimas_native **out, const char *path, mimas_error *err)
         rc = open_gas(r, err);
     if (!rc)
         rc = check_index(r, err);
+    if (!rc)
+        rc = open_metadata(r, err);
     h5_quiet_end(&q);
     if (rc) {
         mimas_native_close(r);
@@ -919,6 +935,7 @@ int mimas_native_frame_meta(mimas_native *r, size_t k, mimas_frame_meta *m, mima
     m->n_particles = (size_t)n;
     if (!rc) {
         mimas_frame tmp;  /* only its box is filled */
+        memset(&tmp.box, 0, sizeof tmp.box); /* and its padding (mimas info memcmps boxes) */
         rc = read_box(r, k, &tmp, err);
         m->box = tmp.box;
     }
@@ -932,6 +949,96 @@ int mimas_native_frame_meta(mimas_native *r, size_t k, mimas_frame_meta *m, mima
             rc = bad(r, err, "%s", "cannot read the wall-contact offsets");
         m->n_walls = (size_t)(ofs[1] - ofs[0]);
     }
+    h5_quiet_end(&q);
+    return rc;
+}
+
+/* ---- run parameters and per-frame observables ---- */
+
+/* Member name of /observables/all: recorded if it is a scalar element. */
+static int note_observable(mimas_native *r, hid_t g, const char *name)
+{
+    char rel[128];
+    if (!strcmp(name, "particle_count") || strlen(name) >= sizeof r->obs[0].name ||
+        snprintf(rel, sizeof rel, "%s/value", name) >= (int)sizeof rel ||
+        H5Lexists(g, name, H5P_DEFAULT) <= 0 || H5Lexists(g, rel, H5P_DEFAULT) <= 0)
+        return 0;
+    hid_t ds = H5Dopen2(g, rel, H5P_DEFAULT);
+    if (ds < 0)
+        return 0;
+    hsize_t dims[4];
+    hid_t t = H5Dget_type(ds);
+    int scalar = ds_shape(ds, dims) == 1 && H5Tget_class(t) == H5T_FLOAT;
+    H5Tclose(t);
+    struct native_obs *grown = scalar ? realloc(r->obs, (r->nobs + 1) * sizeof *grown) : NULL;
+    if (!grown) {
+        H5Dclose(ds);
+        return scalar ? -1 : 0;
+    }
+    r->obs = grown;
+    struct native_obs *o = &r->obs[r->nobs++];
+    snprintf(o->name, sizeof o->name, "%s", name);
+    o->unit[0] = '\0';
+    h5_attr_read_str(ds, "unit", o->unit, sizeof o->unit);
+    o->ds = ds;
+    r->frames = min_frames(r->frames, dims[0]);
+    return 0;
+}
+
+static int open_metadata(mimas_native *r, mimas_error *err)
+{
+    if (parameters_read_h5(r->file, "scenario", &r->params))
+        return bad(r, err, "%s", "cannot read /parameters/scenario (an attribute that is "
+                   "neither a number nor a string?)");
+    hid_t g = H5Lexists(r->file, "/observables", H5P_DEFAULT) > 0 &&
+                      H5Lexists(r->file, NATIVE_OBSERVABLES, H5P_DEFAULT) > 0
+                  ? H5Gopen2(r->file, NATIVE_OBSERVABLES, H5P_DEFAULT)
+                  : H5I_INVALID_HID;
+    H5G_info_t gi;
+    int rc = 0;
+    if (g >= 0 && H5Gget_info(g, &gi) >= 0)
+        for (hsize_t k = 0; !rc && k < gi.nlinks; k++) {
+            char name[64];
+            ssize_t len = H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, name,
+                                             sizeof name, H5P_DEFAULT);
+            if (len > 0 && (size_t)len < sizeof name)
+                rc = note_observable(r, g, name);
+        }
+    if (g >= 0)
+        H5Gclose(g);
+    return rc < 0 ? mimas_error_set(err, MIMAS_EIO, "out of memory") : MIMAS_OK;
+}
+
+const mimas_parameters *mimas_native_parameters(const mimas_native *r)
+{
+    return &r->params;
+}
+
+size_t mimas_native_observables(const mimas_native *r)
+{
+    return r->nobs;
+}
+
+const char *mimas_native_observable_name(const mimas_native *r, size_t i, const char **unit)
+{
+    if (unit)
+        *unit = i < r->nobs ? r->obs[i].unit : "";
+    return i < r->nobs ? r->obs[i].name : NULL;
+}
+
+int mimas_native_observable_read(mimas_native *r, size_t i, size_t k0, size_t n, double *values,
+                                 mimas_error *err)
+{
+    if (i >= r->nobs || k0 > r->frames || n > r->frames - k0)
+        return mimas_error_set(err, MIMAS_EUSAGE, "%s: no observable %zu of frames %zu..%zu",
+                               r->path, i, k0, k0 + n);
+    h5_quiet q;
+    h5_quiet_begin(&q);
+    hsize_t start = k0, count = n;
+    int rc = n && read_block(r->obs[i].ds, H5T_NATIVE_DOUBLE, 1, &start, &count, values) < 0
+                 ? bad(r, err, "cannot read %s/%s of frames %zu..%zu", NATIVE_OBSERVABLES,
+                       r->obs[i].name, k0, k0 + n - 1)
+                 : MIMAS_OK;
     h5_quiet_end(&q);
     return rc;
 }

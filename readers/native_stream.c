@@ -13,6 +13,7 @@ typedef struct native_stream {
     size_t frame;
     mimas_native *cur;
     size_t total;   /* frames of all inputs, counted at open */
+    mimas_parameters params;   /* of all inputs (mimas_parameters_merge) */
 } native_stream;
 
 static int probe(const char *path, const char *head, size_t n)
@@ -36,17 +37,23 @@ static int open_stream(void **state, const char *const *inputs, size_t ninputs,
     s->ninputs = ninputs;
     /* open every file once up front so a bad one is reported before any work */
     for (size_t k = 0; k < ninputs; k++) {
-        mimas_native *r;
+        mimas_native *r = NULL;
         int rc = mimas_native_open(&r, inputs[k], err);
+        if (!rc && k == 0)
+            s->cur = r;
+        if (!rc)
+            rc = k == 0 ? mimas_parameters_copy(&s->params, mimas_native_parameters(r), err)
+                        : mimas_parameters_merge(&s->params, mimas_native_parameters(r), err);
+        if (!rc)
+            s->total += mimas_native_frames(r);
+        if (k > 0)
+            mimas_native_close(r);
         if (rc) {
+            mimas_native_close(s->cur);
+            mimas_parameters_free(&s->params);
             free(s);
             return rc;
         }
-        s->total += mimas_native_frames(r);
-        if (k == 0)
-            s->cur = r;
-        else
-            mimas_native_close(r);
     }
     *state = s;
     return MIMAS_OK;
@@ -101,14 +108,21 @@ static int skip(void *state, mimas_error *err)
 static void close_stream(void *state)
 {
     native_stream *s = state;
-    if (s)
+    if (s) {
         mimas_native_close(s->cur);
+        mimas_parameters_free(&s->params);
+    }
     free(s);
 }
 
 static size_t total(void *state)
 {
     return ((native_stream *)state)->total;
+}
+
+static const mimas_parameters *parameters(void *state)
+{
+    return &((native_stream *)state)->params;
 }
 
 static const char *source(void *state)
@@ -119,4 +133,4 @@ static const char *source(void *state)
 
 const reader_backend reader_native = {"native", "mimas native (HDF5, H5MD 1.1)", probe,
                                       open_stream, next, NULL, close_stream, source, peek, skip,
-                                      total};
+                                      total, parameters};

@@ -361,3 +361,9 @@ size_t mimas_reader_total(const mimas_reader *r)
 {
     return r->be->total ? r->be->total(r->state) : 0;
 }
+
+const mimas_parameters *mimas_reader_parameters(const mimas_reader *r)
+{
+    static const mimas_parameters none = {0, 0, NULL};
+    return r->be->parameters ? r->be->parameters(r->state) : &none;
+}

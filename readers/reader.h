@@ -9,6 +9,7 @@
 
 #include "error.h"
 #include "frame.h"
+#include "parameters.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -60,6 +61,10 @@ size_t mimas_reader_skipped(const mimas_reader *r);
 /* The number of frames the inputs hold, when the format records it (native
  * files: counted at open), else 0 (dumps are not read ahead). */
 size_t mimas_reader_total(const mimas_reader *r);
+/* The run parameters the inputs record (native files: /parameters/scenario,
+ * docs/format.md); empty for formats without them.  A parameter the inputs
+ * disagree on is MIXED.  Valid until the reader is closed. */
+const mimas_parameters *mimas_reader_parameters(const mimas_reader *r);
 void mimas_reader_close(mimas_reader *r);
 
 #ifdef __cplusplus

@@ -147,6 +147,9 @@ int cli_write_table(const char *path, void (*write)(FILE *fp, const void *ctx), 
 char *cli_command_line(int argc, char **argv);
 /* Parses a number; returns 0 on success. */
 int cli_parse_double(const char *s, double *v);
+/* "LO:HI", "LO:" or ":HI" (a bound left out is -+infinity) with LO < HI;
+ * returns 0 on success. */
+int cli_parse_range(const char *arg, double *lo, double *hi);
 int cli_parse_long(const char *s, long *v);
 /* --temperature-components: a comma list of s, r, phi into the bits 1, 2,
  * 4 (MIMAS_TEMP_S, _R, _PHI of axial_profile.h); prints the usage error and

@@ -76,6 +76,13 @@ void cli_table_column(cli_table *t, const char *name, const char *unit)
         units_add(t, unit && unit[0] ? unit : "-");
 }
 
+void cli_table_columns(cli_table *t, const char *const *names, const char *const *units,
+                       size_t n)
+{
+    for (size_t k = 0; k < n; k++)
+        cli_table_column(t, names[k], units ? units[k] : NULL);
+}
+
 void cli_table_header_end(cli_table *t)
 {
     fputc('\n', t->fp);
@@ -135,4 +142,27 @@ int cli_table_end(cli_table *t)
     free(t->units);
     t->units = NULL;
     return t->fp && ferror(t->fp) ? -1 : 0;
+}
+
+typedef struct table_job {
+    const cli_table_options *o;
+    void (*write)(cli_table *t, const void *ctx);
+    const void *ctx;
+} table_job;
+
+static void run_job(FILE *fp, const void *ctx)
+{
+    const table_job *j = ctx;
+    cli_table t;
+    cli_table_start(&t, fp, j->o);
+    j->write(&t, j->ctx);
+    cli_table_end(&t);
+}
+
+int cli_table_write(const char *path, const cli_table_options *o,
+                    void (*write)(cli_table *t, const void *ctx), const void *ctx,
+                    mimas_error *err)
+{
+    table_job j = {o, write, ctx};
+    return cli_write_table(path, run_job, &j, err);
 }

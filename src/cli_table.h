@@ -47,6 +47,9 @@ void cli_table_start(cli_table *t, FILE *fp, const cli_table_options *o);
 /* Header: one call per column (unit NULL: "-"), then cli_table_header_end. */
 void cli_table_column(cli_table *t, const char *name, const char *unit);
 void cli_table_header_end(cli_table *t);
+/* n columns at once: names[k] with units[k] (units NULL: all "-"). */
+void cli_table_columns(cli_table *t, const char *const *names, const char *const *units,
+                       size_t n);
 /* Rows: values in column order, then cli_table_row_end.  NaN is "nan". */
 void cli_table_double(cli_table *t, double v);
 void cli_table_int(cli_table *t, long long v);
@@ -58,5 +61,12 @@ void cli_table_row_end(cli_table *t);
 void cli_table_block_end(cli_table *t, int end_of_set);
 /* Frees the table's memory (the stream stays open); 0, or -1 if writing failed. */
 int cli_table_end(cli_table *t);
+
+/* A whole table into path (NULL or "-": standard output) without partial
+ * files (cli_write_table): write puts its header and rows into t, started
+ * in the format o. */
+int cli_table_write(const char *path, const cli_table_options *o,
+                    void (*write)(cli_table *t, const void *ctx), const void *ctx,
+                    mimas_error *err);
 
 #endif

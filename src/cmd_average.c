@@ -344,6 +344,8 @@ static int run(const cli_command *cmd, int argc, char **argv)
                            0};
     if (!status && root && a.output)
         status = mimas_fields_open(&sink.ff, a.output, want, &err);
+    if (!status && sink.ff)
+        status = mimas_fields_parameters(sink.ff, "scenario", mimas_reader_parameters(r), &err);
     mimas_average *one = NULL; /* the current frame alone (--per-frame) */
     mimas_par_ordered *order = NULL;
     if (!status && a.per_frame) {
@@ -445,7 +447,9 @@ const cli_command cmd_average = {
     "sums; --errors adds the standard error over frames.  Kernels are integrated\n"
     "over the directions a grid leaves out, and averaged exactly over the azimuth\n"
     "on cylindrical grids without phi cells.  Writes a TSV table, one row per\n"
-    "cell: the gridded cell-centre coordinates, then the fields.",
+    "cell: the gridded cell-centre coordinates, then the fields.  The run\n"
+    "parameters of the input (mimas simulate's scenario) go into the field file\n"
+    "of -o.",
     options,
     sizeof options / sizeof options[0],
     1,

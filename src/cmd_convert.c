@@ -161,6 +161,11 @@ static int run(const cli_command *cmd, int argc, char **argv)
         o.provenance = provenance;
         mimas_writer *nw = NULL;
         rc = mimas_writer_open(&nw, a.output, &o, &err);
+        if (!rc && (rc = mimas_writer_parameters(nw, "scenario", mimas_reader_parameters(r),
+                                                 &err)) != MIMAS_OK) {
+            mimas_writer_abort(nw);
+            nw = NULL;
+        }
         out = (sink){nw, native_append, native_frames, native_close, native_abort, {0, 0}};
     }
     if (!rc)
@@ -201,7 +206,8 @@ const cli_command cmd_convert = {
     "OUT.walls.dump; docs/readers.md), every number with 17 significant digits, so\n"
     "that reading them back gives the same frames.  A name ending in .gz is\n"
     "compressed.  Everything is written under temporary names and renamed when\n"
-    "complete, so a failed conversion leaves nothing behind.",
+    "complete, so a failed conversion leaves nothing behind.  A native output keeps\n"
+    "the run parameters of native inputs (not their per-frame observables).",
     options,
     sizeof options / sizeof options[0],
     1,

@@ -12,6 +12,7 @@ extern const cli_command cmd_rheology;
 extern const cli_command cmd_shearband;
 extern const cli_command cmd_simulate;
 extern const cli_command cmd_voronoi;
+extern const cli_command cmd_energy;
 extern const cli_command cmd_xdmf;
 extern const cli_command cmd_plugs;
 extern const cli_command cmd_radial;

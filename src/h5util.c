@@ -347,6 +347,22 @@ hid_t h5_create_growing(hid_t loc, const char *name, hid_t type, int rank, int n
     return ds;
 }
 
+hid_t h5_group_ordered(hid_t loc, const char *path)
+{
+    if (H5Lexists(loc, path, H5P_DEFAULT) > 0)
+        return H5Gopen2(loc, path, H5P_DEFAULT);
+    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+    H5Pset_create_intermediate_group(lcpl, 1);
+    hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
+    unsigned order = H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED;
+    H5Pset_link_creation_order(gcpl, order);
+    H5Pset_attr_creation_order(gcpl, order);
+    hid_t g = H5Gcreate2(loc, path, lcpl, gcpl, H5P_DEFAULT);
+    H5Pclose(gcpl);
+    H5Pclose(lcpl);
+    return g;
+}
+
 hsize_t h5_extent0(hid_t dset)
 {
     hsize_t dims[4] = {0};

@@ -65,6 +65,11 @@ hid_t h5_create_growing(hid_t loc, const char *name, hid_t type, int rank, int n
                         const hsize_t *dims, const hsize_t *chunk, const void *fill,
                         int deflate);
 
+/* Opens the group at path, or creates it (with the groups above it) so that
+ * its members and attributes remember the order they were created in (they
+ * read back in written order). */
+hid_t h5_group_ordered(hid_t loc, const char *path);
+
 /* Writes row k (extending dimension 0 to k + 1) of a growing dataset of
  * rank 1 + rank, whose trailing dimensions are dims; memtype describes
  * row's elements (H5T_NATIVE_DOUBLE, ...).  0 on success. */

@@ -18,6 +18,7 @@ static const cli_command *const commands[] = {
     &cmd_simulate,
     &cmd_shearband,
     &cmd_rheology,
+    &cmd_energy,
     &cmd_xdmf,
     &cmd_disperse,
     &cmd_plugs,

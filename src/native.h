@@ -8,6 +8,7 @@
 
 #include "error.h"
 #include "frame.h"
+#include "parameters.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -48,6 +49,24 @@ int mimas_writer_close(mimas_writer *w, mimas_error *err);
 /* Closes and deletes the file being written (no partial output); frees w. */
 void mimas_writer_abort(mimas_writer *w);
 
+/* Run parameters and per-frame observables (docs/format.md). */
+/* Writes the parameters as the attributes of /parameters/GROUP (once per
+ * group, before the first frame; "scenario" for the keys of mimas
+ * simulate's scenario file). */
+int mimas_writer_parameters(mimas_writer *w, const char *group, const mimas_parameters *ps,
+                            mimas_error *err);
+/* A scalar per frame, the H5MD observable /observables/all/NAME. */
+typedef struct mimas_observable {
+    const char *name;   /* e.g. "kinetic_energy" */
+    const char *unit;   /* SI unit, or NULL */
+    double value;
+} mimas_observable;
+/* Sets the observables of the frame the next mimas_writer_append writes.
+ * A file has observables in every frame or in none: the first frame fixes
+ * their names, and a later frame without them (or with others) is an error. */
+int mimas_writer_observe(mimas_writer *w, const mimas_observable *obs, size_t n,
+                         mimas_error *err);
+
 /* ---- reader (random access) ---- */
 typedef struct mimas_native mimas_native;
 
@@ -67,6 +86,15 @@ int mimas_native_frame_meta(mimas_native *r, size_t k, mimas_frame_meta *m, mima
 int mimas_native_has_contacts(const mimas_native *r);
 int mimas_native_has_walls(const mimas_native *r);
 const char *mimas_native_creator(const mimas_native *r);
+/* The run parameters of /parameters/scenario (empty if the file has none). */
+const mimas_parameters *mimas_native_parameters(const mimas_native *r);
+/* The per-frame observables of /observables/all other than particle_count:
+ * their number, the name and unit ("" if none) of observable i, and n values
+ * of it from frame k0 on. */
+size_t mimas_native_observables(const mimas_native *r);
+const char *mimas_native_observable_name(const mimas_native *r, size_t i, const char **unit);
+int mimas_native_observable_read(mimas_native *r, size_t i, size_t k0, size_t n, double *values,
+                                 mimas_error *err);
 /* The per-particle datasets as stored (for sidecars such as XDMF): name
  * (the element under /particles/all), the stored number type, components and
  * the dataset's extent (frames [including any not yet committed], slots

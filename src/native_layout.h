@@ -9,7 +9,8 @@
 
 #define NATIVE_PARTICLES "/particles/all"
 #define NATIVE_BOX NATIVE_PARTICLES "/box"
-#define NATIVE_COUNT "/observables/all/particle_count"
+#define NATIVE_OBSERVABLES "/observables/all"
+#define NATIVE_COUNT NATIVE_OBSERVABLES "/particle_count"
 #define NATIVE_CONTACTS "/contacts/all"
 #define NATIVE_WALLS "/contacts/walls"
 #define NATIVE_MIMAS "/mimas"

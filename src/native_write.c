@@ -29,6 +29,7 @@
 #include "tmpfiles.h"
 #include "xdmf.h"
 #include "outfile.h"
+#include "parameters_h5.h"
 
 #define PARTICLE_CHUNK_MAX 32768   /* rows of a per-particle chunk */
 #define ROW_CHUNK 32768            /* rows of a per-contact chunk */
@@ -85,6 +86,14 @@ struct mimas_writer {
     /* scratch for index -> id conversion */
     int64_t *ids;
     size_t ids_cap;
+    /* per-frame observables (mimas_writer_observe) */
+    struct observables {
+        size_t n;
+        char (*name)[64], (*unit)[24];
+        double *value;
+        hid_t *ds;            /* created with the first frame */
+        int pending;          /* values set for the next frame */
+    } obs;
     /* commits: frames 0 .. committed-1 are on disk for good */
     size_t committed;
     double staged_bytes;   /* data of the frames staged since the last commit */
@@ -254,16 +263,7 @@ size_t mimas_writer_frames(const mimas_writer *w)
  * columns read back in the order they were written. */
 static hid_t make_group(hid_t file, const char *path)
 {
-    if (H5Lexists(file, path, H5P_DEFAULT) > 0)
-        return H5Gopen2(file, path, H5P_DEFAULT);
-    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
-    H5Pset_create_intermediate_group(lcpl, 1);
-    hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
-    H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
-    hid_t g = H5Gcreate2(file, path, lcpl, gcpl, H5P_DEFAULT);
-    H5Pclose(gcpl);
-    H5Pclose(lcpl);
-    return g;
+    return h5_group_ordered(file, path);
 }
 
 /* A time-dependent H5MD element {step, time, value}: value grows along its
@@ -704,6 +704,106 @@ static int stage_flat(mimas_writer *w, flat_table *t, const void *tab, const mim
     return MIMAS_OK;
 }
 
+/* ---- run parameters and per-frame observables ---- */
+
+int mimas_writer_parameters(mimas_writer *w, const char *group, const mimas_parameters *ps,
+                            mimas_error *err)
+{
+    /* attributes cannot be created once the first commit switched to SWMR */
+    if (w->frames > 0)
+        return mimas_error_set(err, MIMAS_EUSAGE, "%s: the run parameters must be written "
+                               "before the first frame", w->path);
+    h5_quiet q;
+    h5_quiet_begin(&q);
+    int rc = parameters_write_h5(w->file, group, ps) ? h5fail(w, err, "write the parameters")
+                                                     : MIMAS_OK;
+    if (!rc && H5Fflush(w->file, H5F_SCOPE_LOCAL) < 0)
+        rc = h5fail(w, err, "flush");
+    h5_quiet_end(&q);
+    return rc;
+}
+
+int mimas_writer_observe(mimas_writer *w, const mimas_observable *obs, size_t n,
+                         mimas_error *err)
+{
+    struct observables *o = &w->obs;
+    if (!o->name && w->frames == 0) {
+        /* the first frame fixes the names */
+        o->name = calloc(n ? n : 1, sizeof *o->name);
+        o->unit = calloc(n ? n : 1, sizeof *o->unit);
+        o->value = calloc(n ? n : 1, sizeof *o->value);
+        o->ds = calloc(n ? n : 1, sizeof *o->ds);
+        if (!o->name || !o->unit || !o->value || !o->ds)
+            return mimas_error_set(err, MIMAS_EIO, "out of memory");
+        for (size_t k = 0; k < n; k++)
+            o->ds[k] = H5I_INVALID_HID;
+        for (size_t k = 0; k < n; k++) {
+            if (strlen(obs[k].name) >= sizeof o->name[0] || strchr(obs[k].name, '/') ||
+                (obs[k].unit && strlen(obs[k].unit) >= sizeof o->unit[0]))
+                return mimas_error_set(err, MIMAS_EUSAGE, "%s: bad observable name '%s'",
+                                       w->path, obs[k].name);
+            snprintf(o->name[k], sizeof o->name[0], "%s", obs[k].name);
+            snprintf(o->unit[k], sizeof o->unit[0], "%s", obs[k].unit ? obs[k].unit : "");
+        }
+        o->n = n;
+    }
+    /* the same names as the first frame's, in any order */
+    int same = o->name && n == o->n;
+    for (size_t k = 0; same && k < n; k++) {
+        size_t m = 0;
+        while (m < o->n && strcmp(obs[k].name, o->name[m]))
+            m++;
+        same = m < o->n;
+        if (same)
+            o->value[m] = obs[k].value;
+    }
+    if (!same)
+        return mimas_error_set(err, MIMAS_EDATA, "%s: frame %zu: other observables than the "
+                               "first frame's", w->path, w->frames);
+    o->pending = 1;
+    return MIMAS_OK;
+}
+
+/* Appends the pending observables at the current frame (creating their
+ * elements, which share the clock, with the first frame). */
+static int stage_observables(mimas_writer *w, mimas_error *err)
+{
+    struct observables *o = &w->obs;
+    if (!o->name)
+        return MIMAS_OK;
+    if (!o->pending)
+        return mimas_error_set(err, MIMAS_EDATA, "frame without the observables the first "
+                               "frame had");
+    hsize_t dims[1] = {0}, chunk[1] = {FRAME_CHUNK};
+    for (size_t k = 0; k < o->n; k++) {
+        if (o->ds[k] < 0) {
+            char path[128];
+            snprintf(path, sizeof path, NATIVE_OBSERVABLES "/%s", o->name[k]);
+            o->ds[k] = make_element(w, path, H5T_IEEE_F64LE, 1, 1, dims, chunk, NULL, 0,
+                                    o->unit[k][0] ? o->unit[k] : NULL);
+            if (o->ds[k] < 0)
+                return h5fail(w, err, "create an observable");
+        }
+        if (append_scalar(o->ds[k], w->frames, H5T_NATIVE_DOUBLE, &o->value[k]) < 0)
+            return h5fail(w, err, "write an observable");
+    }
+    o->pending = 0;
+    return MIMAS_OK;
+}
+
+static void release_observables(mimas_writer *w)
+{
+    struct observables *o = &w->obs;
+    for (size_t k = 0; o->ds && k < o->n; k++)
+        if (o->ds[k] >= 0)
+            H5Dclose(o->ds[k]);
+    free(o->name);
+    free(o->unit);
+    free(o->value);
+    free(o->ds);
+    memset(o, 0, sizeof *o);
+}
+
 /* The per-frame index of a flat table for staged frame sf (frame k): what
  * makes its rows visible. */
 static int index_flat(mimas_writer *w, flat_table *t, hsize_t k, const struct staged_frame *sf,
@@ -748,6 +848,8 @@ int mimas_writer_stage(mimas_writer *w, const mimas_frame *f, mimas_error *err)
     h5_quiet q;
     h5_quiet_begin(&q);
     rc = w->started ? check_same_layout(w, f, err) : start_layout(w, f, err);
+    if (!rc)
+        rc = stage_observables(w, err);
     if (!rc)
         rc = stage_particles(w, f, err);
     if (!rc && w->has_contacts)
@@ -859,6 +961,7 @@ static herr_t release(mimas_writer *w)
     for (int k = 0; k < 9; k++)
         if (ids[k] > 0)
             H5Dclose(ids[k]);
+    release_observables(w);
     herr_t rc = w->file > 0 ? H5Fclose(w->file) : 0;
     free(w->ids);
     free(w->staged);

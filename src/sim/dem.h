@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "cohesion.h"
 #include "contact_law.h"
 #include "error.h"
 #include "scenario.h"
@@ -174,6 +175,21 @@ double dem_wall_geometry(const dem_wall *w, const double x[3], double radius, do
 /* Velocity of the wall surface at point c. */
 void dem_wall_velocity(const dem_wall *w, const double c[3], double v[3]);
 
+/* Energies (energy.c, docs/simulate.md "Energies"): the motion of the free
+ * particles (glued particles move with the walls) and the springs and
+ * bridges of every contact of the list (glued pairs are in it only where
+ * they interact, as in the pull-off test). */
+typedef struct dem_energy {
+    double kinetic;      /* sum (1/2) m v^2 */
+    double rotational;   /* sum (1/2) I w^2 */
+    double elastic;      /* the springs of the touching contacts, particle and wall */
+    double bridge;       /* the work the liquid bridges would do until they rupture */
+} dem_energy;
+int dem_energies(const dem_system *s, dem_energy *e, mimas_error *err);
+/* The work of a liquid bridge from gap s to its rupture distance s_c,
+ * int_s^s_c F(s') ds' (0 for s >= s_c), by 20-point Gauss-Legendre
+ * quadrature; table is a gsl_integration_glfixed_table of 20 points or NULL. */
+double dem_bridge_energy(const mimas_bridge *b, double r_p, double s, const void *table);
 /* Blow-up detection (blowup.c): MIMAS_EDATA naming the step, the particle
  * and the likely cause when the state is no longer physical: a position,
  * velocity or angular velocity that is not finite, a particle that moves

@@ -230,9 +230,10 @@ void sim_scenario_defaults(sim_scenario *s, int type)
     s->liquid_content = type == SIM_PULLOFF ? 0.01 : 0;
     s->coarse_grain = 1;
     s->rotation = 1;
+    contact_defaults(&s->contact_all);
     for (int a = 0; a < SIM_MAX_TYPES; a++)
         for (int b = 0; b < SIM_MAX_TYPES; b++)
-            contact_defaults(&s->contact[a][b]);
+            s->contact[a][b] = s->contact_all;
     /* the split-bottom cell of Uhlig (2012; docs/theory.md §7.1) */
     s->r_in = 0.0147;
     s->r_split = 0.085;
@@ -279,18 +280,18 @@ void sim_scenario_defaults(sim_scenario *s, int type)
         s->density = 937;
         s->skin = 0.3 * 0.0014;
         s->output_every = 2000;
+        sim_contact_params *c = &s->contact_all;
+        c->friction = 0.5;
+        c->restitution = 0.5;
+        c->normal_clip = 1;
+        c->resting_overlap = 0.001;
+        /* Coulomb sliding regularised by viscous friction below the limit
+         * (Strauss 2005, eq. 3.22): no tangential spring */
+        c->k_t = 0;
+        c->gamma_t = 1e-3;
         for (int a = 0; a < SIM_MAX_TYPES; a++)
-            for (int b = 0; b < SIM_MAX_TYPES; b++) {
-                sim_contact_params *c = &s->contact[a][b];
-                c->friction = 0.5;
-                c->restitution = 0.5;
-                c->normal_clip = 1;
-                c->resting_overlap = 0.001;
-                /* Coulomb sliding regularised by viscous friction below the limit
-                 * (Strauss 2005, eq. 3.22): no tangential spring */
-                c->k_t = 0;
-                c->gamma_t = 1e-3;
-            }
+            for (int b = 0; b < SIM_MAX_TYPES; b++)
+                s->contact[a][b] = s->contact_all;
     }
 }
 
@@ -534,6 +535,7 @@ static int load_any(sim_scenario *s, const char *path, const char *text, const c
             snprintf(c.msg, sizeof c.msg, "syntax error (expected [section] or key = value)");
         return mimas_error_set(err, MIMAS_EDATA, "%s:%d: %s", name, line, c.msg);
     }
+    s->contact_all = c.all;
     for (int a = 0; a < SIM_MAX_TYPES; a++)
         for (int b = 0; b < SIM_MAX_TYPES; b++)
             s->contact[a][b] = c.all;
@@ -641,15 +643,25 @@ int sim_scenario_check(const sim_scenario *s, const char *name, mimas_error *err
 
 /* ---- printing ------------------------------------------------------------ */
 
-static void print_value(FILE *out, const key_desc *k, double v)
+/* The word of a yes/no or choice key's value. */
+static void word_of(const key_desc *k, double v, char *buf, size_t len)
 {
     if (k->kind == K_BOOL) {
-        fputs(v != 0 ? "yes" : "no", out);
-    } else if (k->kind == K_CHOICE) {
-        const char *p = k->choices;
-        for (int idx = 0; idx < (int)v; idx++)
-            p += strcspn(p, "|") + 1;
-        fprintf(out, "%.*s", (int)strcspn(p, "|"), p);
+        snprintf(buf, len, "%s", v != 0 ? "yes" : "no");
+        return;
+    }
+    const char *p = k->choices;
+    for (int idx = 0; idx < (int)v; idx++)
+        p += strcspn(p, "|") + 1;
+    snprintf(buf, len, "%.*s", (int)strcspn(p, "|"), p);
+}
+
+static void print_value(FILE *out, const key_desc *k, double v)
+{
+    if (k->kind == K_BOOL || k->kind == K_CHOICE) {
+        char word[64];
+        word_of(k, v, word, sizeof word);
+        fputs(word, out);
     } else if (k->kind == K_INT) {
         fprintf(out, "%.0f", v);
     } else {
@@ -726,4 +738,50 @@ void sim_scenario_print_doc(FILE *out)
             }
         fprintf(out, " | %s |\n", k->meaning);
     }
+}
+
+/* ---- run parameters ------------------------------------------------------ */
+
+static int add_key(mimas_parameters *ps, const char *section, const key_desc *k, double v,
+                   mimas_error *err)
+{
+    char word[64] = "";
+    mimas_parameter_kind kind = k->kind == K_REAL  ? MIMAS_PARAM_REAL
+                                : k->kind == K_INT ? MIMAS_PARAM_INTEGER
+                                                   : MIMAS_PARAM_TEXT;
+    if (kind == MIMAS_PARAM_TEXT)
+        word_of(k, v, word, sizeof word);
+    return mimas_parameters_add(ps, section, k->name, kind, v, word, k->unit, err);
+}
+
+int sim_scenario_parameters(const sim_scenario *s, mimas_parameters *ps, mimas_error *err)
+{
+    mimas_parameters_clear(ps);
+    int rc = MIMAS_OK;
+    for (size_t m = 0; !rc && m < NKEYS; m++) {
+        const key_desc *k = &keys[m];
+        if (!(k->scenarios & (1 << s->type)))
+            continue;
+        int contact = strcmp(k->section, "contact") == 0;
+        rc = add_key(ps, k->section, k, load(contact ? (const void *)&s->contact_all
+                                                     : (const void *)s, k), err);
+    }
+    /* the keys a [contact A-B] section sets to another value */
+    for (int a = 0; !rc && a < SIM_MAX_TYPES; a++)
+        for (int b = a > 0 ? a : 1; !rc && b < SIM_MAX_TYPES; b++) {
+            char section[32];
+            if (a == 0)
+                snprintf(section, sizeof section, "contact wall-%d", b);
+            else
+                snprintf(section, sizeof section, "contact %d-%d", a, b);
+            for (size_t m = 0; !rc && m < NKEYS; m++) {
+                const key_desc *k = &keys[m];
+                if (strcmp(k->section, "contact") != 0)
+                    continue;
+                double v = load(&s->contact[a][b], k);
+                if (v != load(&s->contact_all, k))
+                    rc = add_key(ps, section, k, v, err);
+            }
+        }
+    return rc;
 }

@@ -9,6 +9,7 @@
 #include <stdio.h>
 
 #include "error.h"
+#include "parameters.h"
 
 enum { SIM_RINGSHEAR = 0, SIM_BOX = 1, SIM_PULLOFF = 2, SIM_PLUGTUBE = 3 };
 #define SIM_SCENARIO_TYPES 4
@@ -49,6 +50,7 @@ typedef struct sim_scenario {
     int rotation;
     /* [contact] and [contact A-B]: by type pair, 0 = wall */
     sim_contact_params contact[SIM_MAX_TYPES][SIM_MAX_TYPES];
+    sim_contact_params contact_all;   /* [contact] itself: the pairs no [contact A-B] sets */
     /* [ringshear] */
     double r_in, r_split, r_out, fill_height, omega, settle_time, shear_time;
     long count;
@@ -85,6 +87,11 @@ int sim_scenario_check(const sim_scenario *s, const char *name, mimas_error *err
 /* Writes a complete INI file with every key of the scenario type, its value,
  * unit and meaning. */
 void sim_scenario_print(const sim_scenario *s, FILE *out);
+/* Every key of the scenario type with its value and unit, as run parameters
+ * (section "scenario", "run", ...; [contact] keys in section "contact", and a
+ * section "contact A-B" or "contact wall-B" for each key a type pair sets
+ * otherwise), for the native file's /parameters/scenario. */
+int sim_scenario_parameters(const sim_scenario *s, mimas_parameters *ps, mimas_error *err);
 /* The scenario type for a name ("ringshear"...), or -1. */
 int sim_scenario_type(const char *name);
 /* Markdown table of every key (docs/simulate.md is checked against it). */

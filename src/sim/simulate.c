@@ -21,12 +21,80 @@ static double now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
+/* The names of the per-frame observables, in the order of dem_energy. */
+#define NOBS 4
+static const char *const obs_names[NOBS] = {"kinetic_energy", "rotational_energy",
+                                            "elastic_energy", "bridge_energy"};
+
+/* The current state as a frame with its energies, appended to w. */
+static int write_frame(const dem_system *s, const sim_plan *plan, mimas_frame *f,
+                       mimas_writer *w, mimas_error *err)
+{
+    dem_energy e;
+    int rc = sim_frame_fill(s, plan, f, err);
+    if (!rc)
+        rc = dem_energies(s, &e, err);
+    if (rc)
+        return rc;
+    double v[NOBS] = {e.kinetic, e.rotational, e.elastic, e.bridge};
+    mimas_observable obs[NOBS];
+    for (int k = 0; k < NOBS; k++)
+        obs[k] = (mimas_observable){obs_names[k], "J", v[k]};
+    rc = mimas_writer_observe(w, obs, NOBS, err);
+    return rc ? rc : mimas_writer_append(w, f, err);
+}
+
+/* The scenario's keys as /parameters/scenario (docs/format.md). */
+static int write_parameters(const sim_scenario *sc, mimas_writer *w, mimas_error *err)
+{
+    mimas_parameters ps;
+    mimas_parameters_init(&ps);
+    int rc = sim_scenario_parameters(sc, &ps, err);
+    if (!rc)
+        rc = mimas_writer_parameters(w, "scenario", &ps, err);
+    mimas_parameters_free(&ps);
+    return rc;
+}
+
+/* A new output file with the scenario's keys as its run parameters (they
+ * must come before the first frame). */
+static int open_output(const sim_scenario *sc, const char *path, const mimas_writer_options *wo,
+                       mimas_writer **w, mimas_error *err)
+{
+    int rc = mimas_writer_open(w, path, wo, err);
+    if (!rc && (rc = write_parameters(sc, *w, err)) != MIMAS_OK) {
+        mimas_writer_abort(*w);
+        *w = NULL;
+    }
+    return rc;
+}
+
+/* Frame k of r with its observables into w. */
+static int copy_frame(mimas_native *r, const char *path, size_t k, mimas_frame *f,
+                      mimas_writer *w, mimas_error *err)
+{
+    size_t n = mimas_native_observables(r);
+    mimas_observable obs[NOBS];
+    int rc = n > NOBS ? mimas_error_set(err, MIMAS_EDATA, "%s: more observables than mimas "
+                                        "simulate writes", path)
+                      : MIMAS_OK;
+    for (size_t q = 0; !rc && q < n; q++) {
+        obs[q].name = mimas_native_observable_name(r, q, &obs[q].unit);
+        rc = mimas_native_observable_read(r, q, k, 1, &obs[q].value, err);
+    }
+    if (!rc && n)
+        rc = mimas_writer_observe(w, obs, n, err);
+    if (!rc)
+        rc = mimas_native_read(r, k, f, err);
+    return rc ? rc : mimas_writer_append(w, f, err);
+}
+
 /* --resume: the frames of the old file up to the checkpoint go into a new
  * file (under a temporary name, renamed over the old one), which the run
  * then continues.  Frames written after the checkpoint are dropped: the run
  * writes them again. */
-static int reopen_output(const sim_run_options *o, int64_t last_step, mimas_writer **w,
-                         const mimas_writer_options *wo, mimas_error *err)
+static int reopen_output(const sim_scenario *sc, const sim_run_options *o, int64_t last_step,
+                         mimas_writer **w, const mimas_writer_options *wo, mimas_error *err)
 {
     char tmp[4200];
     if (mimas_tmpfile_name(tmp, sizeof tmp, o->output))
@@ -36,7 +104,7 @@ static int reopen_output(const sim_run_options *o, int64_t last_step, mimas_writ
     if (rc)
         return rc;
     int slot = mimas_tmpfile_add(tmp);
-    if ((rc = mimas_writer_open(w, tmp, wo, err))) {
+    if ((rc = open_output(sc, tmp, wo, w, err))) {
         mimas_tmpfile_forget(slot);
         mimas_native_close(r);
         return rc;
@@ -48,8 +116,7 @@ static int reopen_output(const sim_run_options *o, int64_t last_step, mimas_writ
         mimas_frame_meta m;
         if ((rc = mimas_native_frame_meta(r, k, &m, err)) || m.step > last_step)
             break;
-        if (!(rc = mimas_native_read(r, k, &f, err)))
-            rc = mimas_writer_append(*w, &f, err);
+        rc = copy_frame(r, o->output, k, &f, *w, err);
     }
     mimas_frame_free(&f);
     mimas_native_close(r);
@@ -95,7 +162,7 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
         mimas_writer_options wr = wo;
         wr.xdmf = 0;
         if (!(rc = sim_checkpoint_read(&s, state, nstate, ckpt, err)))
-            rc = reopen_output(o, s.step, &w, &wr, err);
+            rc = reopen_output(sc, o, s.step, &w, &wr, err);
     } else if (!rc) {
         /* everything that can fail on the scenario is done before the output
          * is created: a refused scenario leaves no file and harms none */
@@ -106,10 +173,10 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
             rc = dem_check_state(&s, err);
         if (!rc) {
             remove(ckpt);
-            rc = mimas_writer_open(&w, o->output, &wo, err);
+            rc = open_output(sc, o->output, &wo, &w, err);
         }
-        if (!rc && plan.output_from == 0 && !(rc = sim_frame_fill(&s, &plan, &f, err)))
-            rc = mimas_writer_append(w, &f, err);
+        if (!rc && plan.output_from == 0)
+            rc = write_frame(&s, &plan, &f, w, err);
     }
     double t0 = now(), last = t0, last_ckpt = -INFINITY;
     int64_t first = s.step;
@@ -118,9 +185,8 @@ int sim_run(const sim_scenario *sc, const sim_run_options *o, mimas_error *err)
         if ((rc = dem_step(&s, err)))
             break;
         int frame = s.step >= plan.output_from && s.step % sc->output_every == 0;
-        if (frame && !(rc = dem_check_state(&s, err)) &&
-            !(rc = sim_frame_fill(&s, &plan, &f, err)))
-            rc = mimas_writer_append(w, &f, err);
+        if (frame && !(rc = dem_check_state(&s, err)))
+            rc = write_frame(&s, &plan, &f, w, err);
         int stop = o->stop_at > 0 && s.step >= o->stop_at;
         int ckpt_now = stop || s.step == plan.total_steps ||
                        (sc->checkpoint_every > 0 ? s.step % sc->checkpoint_every == 0

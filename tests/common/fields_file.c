@@ -8,6 +8,7 @@
 
 #include "h5util.h"
 #include "output_h5.h"
+#include "parameters_h5.h"
 
 static int write_grid(hid_t file, const fields_file_spec *s)
 {
@@ -45,7 +46,7 @@ int write_fields_file(const char *path, const fields_file_spec *s, size_t nfield
              h5_attr_write_ints(m, "frames", &s->frames, 1);
     if (m >= 0)
         H5Gclose(m);
-    rc = rc || write_grid(file, s);
+    rc = rc || write_grid(file, s) || (s->params && parameters_write_h5(file, "scenario", s->params));
     size_t cells = (size_t)s->n[0] * (size_t)s->n[1] * (size_t)s->n[2];
     hsize_t dims[3] = {(hsize_t)s->n[2], (hsize_t)s->n[1], (hsize_t)s->n[0]};
     double *sd = malloc(cells * sizeof *sd), *count = malloc(cells * sizeof *count);

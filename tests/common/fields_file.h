@@ -6,6 +6,8 @@
 
 #include <stddef.h>
 
+#include "parameters.h"
+
 typedef struct fields_file_spec {
     const char *kind;        /* "cylindrical", "cartesian" or "none" */
     int n[3];                /* cells per direction (direction 0 fastest) */
@@ -13,6 +15,7 @@ typedef struct fields_file_spec {
     int gridded[3];
     int frames;              /* the count of every defined value */
     int version[2];          /* fields_version ({0, 0}: the current one) */
+    const mimas_parameters *params; /* run parameters (/parameters/scenario), or NULL */
 } fields_file_spec;
 
 /* Writes the fields names[k] with mean[k] and standard errors sem[k]

@@ -37,7 +37,7 @@ printf '%s\n' $sources "tests/fuzz/fuzz_input.c" | xargs -P "$(nproc 2>/dev/null
     case $f in *.cc) cc="clang++ -std=c++17" ;; *) cc="clang -std=gnu17" ;; esac
     $cc $cflags -fsanitize=fuzzer-no-link $incs -c "$top/$f" -o "$o"' || exit 1
 ar rcs "$out/libmimas-fuzz.a" "$out"/obj/*.o
-targets="dump local mercury native scenario"
+targets="dump local mercury native scenario thermo"
 libs="$hdf5 $(pkg-config --libs gsl fftw3) $(pkg-config --libs inih 2>/dev/null || echo -linih) \
       -lvoro++ -ldouble-conversion -lz -lm"
 for t in $targets; do

@@ -1,9 +1,10 @@
 /* Writes a field file in the layout of mimas average -o from a table on
  * standard input (for the CLI tests of the analyses).  Usage:
- *   make_fields -o FILE --grid SPEC [--frames N] < TABLE
+ *   make_fields -o FILE --grid SPEC [--frames N] [--param SECTION.KEY=VALUE]... < TABLE
  * SPEC is a grid of mimas average (none, x=..., r=...); TABLE has a header
  * of field names (NAME_sem: the standard error of NAME) and one row per
- * cell, direction 0 fastest. */
+ * cell, direction 0 fastest.  --param adds a run parameter: a number (REAL),
+ * or a word (TEXT; "mixed" for MIXED). */
 #include <config.h>
 
 #include <getopt.h>
@@ -20,9 +21,12 @@ int main(int argc, char **argv)
 {
     const char *out = NULL, *spec = NULL;
     int frames = 10;
+    mimas_parameters params;
+    mimas_parameters_init(&params);
     static const struct option opts[] = {{"output", required_argument, NULL, 'o'},
                                          {"grid", required_argument, NULL, 'g'},
                                          {"frames", required_argument, NULL, 'f'},
+                                         {"param", required_argument, NULL, 'p'},
                                          {NULL, 0, NULL, 0}};
     int c;
     while ((c = getopt_long(argc, argv, "o:", opts, NULL)) != -1) {
@@ -30,6 +34,22 @@ int main(int argc, char **argv)
         case 'o': out = optarg; break;
         case 'g': spec = optarg; break;
         case 'f': frames = atoi(optarg); break;
+        case 'p': {
+            char sec[64], key[64], val[64], *end;
+            if (sscanf(optarg, "%63[^.].%63[^=]=%63s", sec, key, val) != 3) {
+                fprintf(stderr, "make_fields: --param SECTION.KEY=VALUE, not '%s'\n", optarg);
+                return 1;
+            }
+            double v = strtod(val, &end);
+            mimas_parameter_kind kind = *end || end == val ? MIMAS_PARAM_TEXT : MIMAS_PARAM_REAL;
+            if (kind == MIMAS_PARAM_TEXT && !strcmp(val, "mixed"))
+                kind = MIMAS_PARAM_MIXED;
+            if (mimas_parameters_add(&params, sec, key, kind, v, val, NULL, NULL)) {
+                fprintf(stderr, "make_fields: bad --param '%s'\n", optarg);
+                return 1;
+            }
+            break;
+        }
         default: fprintf(stderr, "make_fields: bad option\n"); return 1;
         }
     }
@@ -90,10 +110,12 @@ int main(int argc, char **argv)
                           {centre[0], centre[1], centre[2]},
                           {g.gridded[0], g.gridded[1], g.gridded[2]},
                           frames,
-                          {0, 0}};
+                          {0, 0},
+                          &params};
     if (write_fields_file(out, &s, nf, fnames, mean, sem)) {
         fprintf(stderr, "make_fields: cannot write %s\n", out);
         return 2;
     }
+    mimas_parameters_free(&params);
     return 0;
 }

@@ -196,7 +196,7 @@ static const char *ring_fields(void)
     }
     const char *names[] = {"p", "tau", "tau_phi", "shear_rate", "shear_rate_luding", "I"};
     const double *mean[] = {p, tau, tphi, sr, srl, I};
-    fields_file_spec s = {"cylindrical", {NCELLS, 1, 1}, {r, &phi, &z}, {1, 0, 0}, 10, {0, 0}};
+    fields_file_spec s = {"cylindrical", {NCELLS, 1, 1}, {r, &phi, &z}, {1, 0, 0}, 10, {0, 0}, NULL};
     const char *path = scratch_path("ring.h5");
     assert_int_equal(write_fields_file(path, &s, 6, names, mean, NULL), 0);
     return path;
@@ -262,7 +262,7 @@ static void test_missing_fields(void **state)
     double v[3] = {1, 2, 3}, x[3] = {0, 1, 2}, zero = 0;
     const char *names[] = {"p", "tau", "shear_rate", "I"};
     const double *mean[] = {v, v, v, v};
-    fields_file_spec s = {"cartesian", {3, 1, 1}, {x, &zero, &zero}, {1, 0, 0}, 3, {0, 0}};
+    fields_file_spec s = {"cartesian", {3, 1, 1}, {x, &zero, &zero}, {1, 0, 0}, 3, {0, 0}, NULL};
     const char *path = scratch_path("cart.h5");
     assert_int_equal(write_fields_file(path, &s, 4, names, mean, NULL), 0);
     mimas_fieldset *fs;
