@@ -89,17 +89,6 @@ static int parse_bytes(const char *arg, size_t *v)
     return 0;
 }
 
-static int parse_range(const char *arg, double *lo, double *hi)
-{
-    char *end;
-    *lo = strtod(arg, &end);
-    if (end == arg || *end != ':')
-        return -1;
-    const char *b = end + 1;
-    *hi = strtod(b, &end);
-    return end == b || *end || !isfinite(*lo) || !isfinite(*hi) ? -1 : 0;
-}
-
 static int on_option(void *ctx, size_t opt, const char *arg)
 {
     disperse_args *a = ctx;
@@ -119,7 +108,7 @@ static int on_option(void *ctx, size_t opt, const char *arg)
         o->has_fit_from = 1;
         return 0;
     case O_FIT_LAGS:
-        if (parse_range(arg, &o->fit_lo, &o->fit_hi) || !(o->fit_lo >= 0) ||
+        if (cli_parse_pair(arg, &o->fit_lo, &o->fit_hi) || !(o->fit_lo >= 0) ||
             !(o->fit_hi > o->fit_lo))
             return cli_fail(a->cmd, 1, "--fit-lags needs T0:T1 with 0 <= T0 < T1 (s), not '%s'",
                             arg);
