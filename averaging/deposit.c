@@ -108,6 +108,11 @@ void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weig
             dp->gq[d] = exp(-2.0 * dp->h[d] * dp->h[d] * wt->inv2w2);
         mimas_gauss_tables();
     }
+    dp->gauss_rz = dp->kernel && wt->kind != MIMAS_WEIGHT_LUCY &&
+                   g->kind != MIMAS_GRID_CARTESIAN && !g->gridded[1] && dp->dims == 3;
+    if (dp->gauss_rz)
+        for (int d = 0; d < 3; d += 2)
+            dp->gq[d] = exp(-2.0 * dp->h[d] * dp->h[d] * wt->inv2w2);
     /* images along the periodic edge vectors: shifts k_a a + k_b b + k_c c */
     double e[3][3];
     mimas_box_edges(box, e);
@@ -379,6 +384,8 @@ static int kernel_sphere(const mimas_deposit *dp, const double x[3], const doubl
     const mimas_weight *wt = dp->wt;
     if (dp->gauss_xyz)
         return mimas_gauss_sphere_xyz(dp, x, with_grad, ws);
+    if (dp->gauss_rz)
+        return mimas_gauss_sphere_rz(dp, a, with_grad, dp->inv_extent, ws);
     int lo[3], hi[3];
     if (!dep_candidate_box(dp, a, mimas_weight_reach(wt), lo, hi))
         return MIMAS_OK;
@@ -452,19 +459,25 @@ int mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, i
 
 /* ---- segments ------------------------------------------------------------------------ */
 
+int dep_ring_rule(const mimas_weight *wt, double len, const double **x, const double **w)
+{
+    double scale = wt->kind == MIMAS_WEIGHT_LUCY ? wt->w / 3.0 : wt->w;
+    int n = len <= 0.5 * scale ? 4 : (len <= 2.0 * scale ? 8 : 16);
+    *x = n == 4 ? gl4_x : (n == 8 ? gl8_x : gl16_x);
+    *w = n == 4 ? gl4_w : (n == 8 ? gl8_w : gl16_w);
+    return n;
+}
+
 /* The azimuthal average along the segment from a to b (axis frame) at the ring
- * (r, z) by Gauss-Legendre, with 4, 8 or 16 points for segments up to w/2, 2w
- * or longer (the kernel varies on the scale w; Lucy's on c/3). */
+ * (r, z) by Gauss-Legendre (dep_ring_rule). */
 static double ring_segment(const mimas_deposit *dp, double r, double z, const double a[3],
                            const double b[3])
 {
     const mimas_weight *wt = dp->wt;
     double len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
                       (b[2] - a[2]) * (b[2] - a[2]));
-    double scale = wt->kind == MIMAS_WEIGHT_LUCY ? wt->w / 3.0 : wt->w;
-    int n = len <= 0.5 * scale ? 4 : (len <= 2.0 * scale ? 8 : 16);
-    const double *xs = n == 4 ? gl4_x : (n == 8 ? gl8_x : gl16_x);
-    const double *wsg = n == 4 ? gl4_w : (n == 8 ? gl8_w : gl16_w);
+    const double *xs, *wsg;
+    int n = dep_ring_rule(wt, len, &xs, &wsg);
     double sum = 0.0;
     for (int k = 0; k < n; k++) {
         double t, wgt, p[3];
@@ -524,6 +537,8 @@ static int segment_cells(const mimas_deposit *dp, const double a[3], const doubl
         if (rc >= 0)
             return rc;
     }
+    if (dp->gauss_rz)
+        return mimas_gauss_segment_rz(dp, aa, ab, am, reach, dp->inv_extent, ws);
     int lo[3], hi[3];
     if (!dep_candidate_box(dp, am, reach, lo, hi))
         return MIMAS_OK;

@@ -58,4 +58,18 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
 /* Makes the table the segment's closed form uses (once; thread-safe). */
 void mimas_gauss_tables(void);
 
+/* The Gaussian on an r-z grid (dp->gauss_rz): a particle at axis-frame a (its azimuthal
+ * average and gradient at the cell centres) and a segment aa -> ab (Gauss-Legendre along
+ * it, dep_ring_rule) over the cells within reach of its midpoint am, with the factors
+ * e^{-dr^2/2w^2} and e^{-dz^2/2w^2} per column and row and the ring series per cell
+ * (deposit_ring.c); scale multiplies every weight. */
+int mimas_gauss_sphere_rz(const mimas_deposit *dp, const double a[3], int with_grad,
+                          double scale, mimas_weights *ws);
+int mimas_gauss_segment_rz(const mimas_deposit *dp, const double aa[3], const double ab[3],
+                           const double am[3], double reach, double scale, mimas_weights *ws);
+/* The Gauss-Legendre rule along a segment of length len for the azimuthal average: 4, 8
+ * or 16 points for segments up to w/2, 2w or longer (the kernel varies on the scale w;
+ * Lucy's on c/3).  Returns n and sets its nodes and weights (gauss_legendre.h). */
+int dep_ring_rule(const mimas_weight *wt, double len, const double **x, const double **w);
+
 #endif

@@ -455,58 +455,80 @@ static double radial_kernel(const mimas_weight *wt, int dims, double D2, double 
     return e - wt->coef * wt->shift;
 }
 
-/* The cut ring of the plain or shifted Gaussian by the binomial series (docs/fields.md,
- * "Cylindrical grids without phi cells"): with u = sin(t/2), a = 2 r rho/w^2 and
- * X = (R^2 - D0^2)/2w^2 = a u_m^2,
- *   I_m = int_0^tm e^{-D^2/2w^2} u^{2m} dt = tail u_m y^m sum_n c_n y^n T_{n+m},
- * y = u_m^2, c_n = (2n choose n)/4^n, T_n = tail M_{n+1/2}(X) = int_0^1 2 e^{-D0^2/2w^2}
- * e^{-X s^2} s^{2n} ds / tail, M_s(X) = e^X X^{-s} gamma(s, X) = sum_k X^k/(s (s+1)..(s+k)).
- * The series' terms fall like c_n y^n: N + 1 of them leave < 1e-17 relative.  T_0 =
- * E sqrt(pi) erf(sqrt X)/sqrt X (E = e^{-D0^2/2w^2}) and T_{n+1} = ((n + 1/2) T_n - tail)/X
- * upwards, which loses (n + 1/2)/X per step, but each step's term has a factor y = X/a:
- * for a >= 4 (N + 2) the loss stays below a few ulp of the sum.  Nearer the axis,
- * T_{N+1} by its series and T_n = (tail + X T_{n+1})/(n + 1/2) downwards (stable).
- * Returns 0 where it does not apply (y > 1/2, or X > 18 off the upward recurrence). */
-int mimas_gauss_ring_series(const mimas_weight *wt, double E, double X, double a, double I[2])
+/* M_{1/2}(X) = e^X sqrt(pi) erf(sqrt X)/sqrt X for 0 <= X <= RING_XMAX: the table's
+ * Taylor polynomial about the midpoint of X's interval (ring_tables.h). */
+static double ring_m_half_at(double X)
 {
-    double y = X / a, tail = wt->tail;
+    int m = (int)(X * RING_STEP);
+    if (m >= RING_STEP * RING_XMAX)
+        m = RING_STEP * RING_XMAX - 1;
+    const double *c = ring_m_half[m];
+    double t = X - (m + 0.5) / RING_STEP, v = c[RING_DEG];
+    for (int j = RING_DEG - 1; j >= 0; j--)
+        v = v * t + c[j];
+    return v;
+}
+
+/* The cut ring of the plain or shifted Gaussian by the binomial series (docs/fields.md,
+ * "Cylindrical grids without phi cells"): with u = sin(t/2), u_m = sin(t_m/2), y = u_m^2,
+ * a = 2 r rho/w^2 and X = (R^2 - D0^2)/2w^2 = a y, (1 - u^2)^{-1/2} = sum_n c_n u^{2n} gives
+ *   I_m = int_0^tm e^{-D^2/2w^2} u^{2m} dt = u_m y^m sum_n c_n y^n T_{n+m},
+ *   T_n = 2 E int_0^1 e^{-X s^2} s^{2n} ds = tail M_{n+1/2}(X),
+ * E = e^{-D0^2/2w^2} = tail e^X, M_s(X) = e^X X^{-s} gamma(s, X) = sum_k X^k/(s (s+1)..(s+k)).
+ * The terms fall like c_n y^n (T_n <= T_0): N + 1 of them leave < 1e-17 relative.
+ * Upwards, T_{n+1} = ((n + 1/2) T_n - tail)/X loses (n + 1/2)/X per step, but each term
+ * has a factor y = X/a: while a >= 4 (n + 2) the loss stays below a few ulp of the sum
+ * (in U_n = X^n T_n there is no division); T_0 from the table of M_{1/2} (erf beyond it).
+ * Nearer the axis, T_{N+1} by its series and T_n = (tail + X T_{n+1})/(n + 1/2)
+ * downwards (stable).  Returns 0 where it does not apply (y > 1/2, or a series for
+ * T_{N+1} longer than the table of 1/(j + 1/2), X > ~100). */
+static int gauss_ring_series(const mimas_weight *wt, double E, double X, double a, double y,
+                             double I[2])
+{
+    double tail = wt->tail, eps = 1e-17 * (1.0 - y), s0 = 0.0, s1 = 0.0;
     if (!(y <= 0.5) || !(X > 0))
         return 0;
-    int N = 0;
-    for (double p = y; p > 1e-17 * (1.0 - y); p *= y)
-        N++;
-    double um = sqrt(y), s0 = 0.0, s1 = 0.0;
-    if (a >= 4.0 * (N + 2) && X > 1e-12) {
-        double sx = sqrt(X), inv = 1.0 / X, T = E * sqrt(M_PI) * erf(sx) / sx, yn = 1.0;
-        for (int n = 0; n <= N; n++) {
-            double next = ((n + 0.5) * T - tail) * inv, p = ring_binom[n] * yn;
-            s0 += p * T;
-            s1 += p * next;
-            T = next;
-            yn *= y;
-        }
-    } else {
-        if (X > 18.0)
-            return 0;
-        /* T_{N+1}: its series, to the last term below 1e-17 of the sum beyond k = X */
-        double term = ring_inv_half[N + 1], T = term;
-        int j = N + 2;
-        for (; j < RING_NH && (term > 1e-17 * T || j < N + 1 + X); j++) {
-            term *= X * ring_inv_half[j];
-            T += term;
-        }
-        if (j == RING_NH)
-            return 0;
-        T *= tail;
-        for (int n = N; n >= 0; n--) {
-            double Tn = (tail + X * T) * ring_inv_half[n];
-            s1 = s1 * y + ring_binom[n] * T;
-            s0 = s0 * y + ring_binom[n] * Tn;
-            T = Tn;
+    /* upwards while a >= 4 (n + 2), to the first y^n below eps, in U_n = X^n T_n:
+     * U_{n+1} = (n + 1/2) U_n - tail X^n, and y^n T_n = U_n / a^n */
+    double U = X <= RING_XMAX ? tail * ring_m_half_at(X)
+                              : E * sqrt(M_PI) * erf(sqrt(X)) / sqrt(X);
+    double ia = 1.0 / a, ian = 1.0, xn = tail, yn = 1.0;
+    for (int n = 0; 4.0 * (n + 2) <= a; n++) {
+        double next = (n + 0.5) * U - xn;
+        s0 += ring_binom[n] * ian * U;
+        ian *= ia;
+        s1 += ring_binom[n] * ian * next;
+        U = next;
+        xn *= X;
+        yn *= y;
+        if (yn <= eps) {
+            I[0] = sqrt(y) * s0;
+            I[1] = sqrt(y) * s1;
+            return 1;
         }
     }
-    I[0] = um * s0;
-    I[1] = um * y * s1;
+    s0 = s1 = 0.0;
+    int N = 0;
+    for (double p = y; p > eps; p *= y)
+        N++;
+    /* T_{N+1}: its series, to the last term below 1e-17 of the sum beyond k = X */
+    double term = ring_inv_half[N + 1], T = term;
+    int j = N + 2;
+    for (; j < RING_NH && (term > 1e-17 * T || j < N + 1 + X); j++) {
+        term *= X * ring_inv_half[j];
+        T += term;
+    }
+    if (j == RING_NH)
+        return 0;
+    T *= tail;
+    for (int n = N; n >= 0; n--) {
+        double Tn = (tail + X * T) * ring_inv_half[n];
+        s1 = s1 * y + ring_binom[n] * T;
+        s0 = s0 * y + ring_binom[n] * Tn;
+        T = Tn;
+    }
+    I[0] = sqrt(y) * s0;
+    I[1] = sqrt(y) * y * s1;
     return 1;
 }
 
@@ -522,6 +544,26 @@ static void arc_end_grad(const mimas_weight *wt, int dims, double um2, double r,
         grad[0] += fR * (-(r - rho * cos_tm) / (r * rho * sin_tm)) / M_PI;
         grad[1] += fR * (-dz / (r * rho * sin_tm)) / M_PI;
     }
+}
+
+int mimas_gauss_ring_short(const mimas_weight *wt, double r, double rho, double dz, double D02,
+                           double E, double *v, double grad[2])
+{
+    double rr = 4.0 * r * rho, R2 = wt->reach2, um2 = (R2 - D02) / rr, I[2];
+    if (!(um2 <= 0.5) ||
+        !gauss_ring_series(wt, E, (R2 - D02) * wt->inv2w2, rr * wt->inv2w2, um2, I))
+        return 0;
+    /* (coef/pi) (I_0 - shift t_m); d/dr of D^2 is 2 (r - rho) + 4 rho u^2 */
+    *v = wt->coef / M_PI * I[0];
+    if (wt->shift > 0)
+        *v -= wt->coef / M_PI * wt->shift * 2.0 * asin(sqrt(um2));
+    if (grad) {
+        double k = -wt->coef * wt->inv2w2 / M_PI;
+        grad[0] = k * (2.0 * (r - rho) * I[0] + 4.0 * rho * I[1]);
+        grad[1] = k * 2.0 * dz * I[0];
+        arc_end_grad(wt, 3, um2, r, rho, dz, grad);
+    }
+    return 1;
 }
 
 double mimas_kernel_ring(const mimas_weight *wt, int dims, double r, double rho, double dz,
@@ -548,23 +590,10 @@ double mimas_kernel_ring(const mimas_weight *wt, int dims, double r, double rho,
         }
         return e * i0 - wt->coef * wt->shift;
     }
-    if (dims == 3 && wt->kind != MIMAS_WEIGHT_LUCY && um2 <= 0.5) {
-        /* (coef/pi) (I_0 - shift t_m) by the series; d/dr of D^2 is 2 (r - rho) + 4 rho u^2 */
-        double I[2];
-        if (mimas_gauss_ring_series(wt, exp(-D02 * wt->inv2w2), (R2 - D02) * wt->inv2w2,
-                                    rr * wt->inv2w2, I)) {
-            double v = wt->coef / M_PI * I[0];
-            if (wt->shift > 0)
-                v -= wt->coef / M_PI * wt->shift * 2.0 * asin(sqrt(um2));
-            if (grad) {
-                double k = -wt->coef * wt->inv2w2 / M_PI;
-                grad[0] = k * (2.0 * (r - rho) * I[0] + 4.0 * rho * I[1]);
-                grad[1] = k * 2.0 * dz * I[0];
-                arc_end_grad(wt, dims, um2, r, rho, dz, grad);
-            }
-            return v;
-        }
-    }
+    double v;
+    if (dims == 3 && wt->kind != MIMAS_WEIGHT_LUCY && um2 <= 0.5 &&
+        mimas_gauss_ring_short(wt, r, rho, dz, D02, exp(-D02 * wt->inv2w2), &v, grad))
+        return v;
     /* (1/pi) int_0^tm k(D(t)) dt, D^2 = D0^2 + 4 r rho sin^2(t/2): in u = sin(t/2) =
      * um sin(theta) while the arc is short (the Jacobian 2/sqrt(1 - u^2) stays smooth),
      * else in t = tm sin(theta); both make a square-root edge of the marginal smooth */

@@ -75,12 +75,14 @@ double mimas_kernel_marginal_line(const mimas_weight *wt, int dims, const double
  * makes the integrand smooth.  grad (may be NULL) gets (d/dr, d/dz). */
 double mimas_kernel_ring(const mimas_weight *wt, int dims, double r, double rho, double dz,
                          double grad[2]);
-/* The plain or shifted Gaussian's cut ring (dims 3) by a binomial series, from
- * E = e^{-D0^2/2w^2}, X = (R^2 - D0^2)/2w^2 > 0 and a = 2 r rho/w^2 (D0^2 = (r - rho)^2 + dz^2):
- * I[m] = int_0^tm e^{-D^2/2w^2} sin^{2m}(t/2) dt, m = 0, 1, so the average is
- * coef (I[0] - shift tm)/pi.  Returns 0 (I untouched) where the arc is too long for it,
- * sin^2(tm/2) = X/a > 1/2: mimas_kernel_ring's rule does those. */
-int mimas_gauss_ring_series(const mimas_weight *wt, double E, double X, double a, double I[2]);
+/* The plain or shifted Gaussian's average (dims 3) on a ring that its support cuts
+ * short, by a binomial series (exact to rounding): the same as mimas_kernel_ring for
+ * D0^2 = (r - rho)^2 + dz^2 < R^2, given E = e^{-D0^2/2w^2} (which a caller may have as
+ * a product of factors).  Returns 0 (v, grad untouched) for longer arcs, where the
+ * support reaches more than a quarter of the way round (sin^2(tm/2) > 1/2): the rule of
+ * mimas_kernel_ring does those. */
+int mimas_gauss_ring_short(const mimas_weight *wt, double r, double rho, double dz, double D02,
+                           double E, double *v, double grad[2]);
 
 #ifdef __cplusplus
 }

@@ -422,10 +422,10 @@ static void ref_ring_grad(double r, double rho, double dz, double g[2])
 
 /* The Gaussian's cut ring (the binomial series: short arcs, sin^2(tm/2) <= 1/2) at
  * random points against adaptive quadrature of the 3-D kernel over the arc: the
- * value within 1e-14 of the kernel's peak, the gradient within 1e-13 peak/w (the
+ * value within tol = 1e-14 of the kernel's peak, the gradient within 10 tol peak/w (the
  * reference's own tolerance is 1e-13 relative); both recurrences are hit (a from
  * 0.5 to 2000). */
-static void check_ring_series(const char *spec, unsigned seed)
+static void check_ring_series(const char *spec, unsigned seed, double tol)
 {
     mimas_weight wt = parse(spec);
     double w = wt.w, R = R_REACH(), peak = ref_phi(0), worst = 0, gworst = 0;
@@ -447,9 +447,10 @@ static void check_ring_series(const char *spec, unsigned seed)
         double v = mimas_kernel_ring(&wt, 3, r, rho, dz, g);
         double e = fabs(v - ref_ring(3, r, rho, dz)) / peak;
         worst = fmax(worst, e);
-        if (!(e < 1e-14))
-            print_message("# value r %g rho %g dz %g: %g vs %g\n", r / w, rho / w, dz / w, v, ref_ring(3, r, rho, dz));
-        assert_true(e < 1e-14);
+        if (!(e < tol))
+            print_message("# value r %g rho %g dz %g: %.17g vs %.17g\n", r / w, rho / w, dz / w,
+                          v, ref_ring(3, r, rho, dz));
+        assert_true(e < tol);
         ref_ring_grad(r, rho, dz, gr);
         for (int m = 0; m < 2; m++) {
             /* near the support's edge the arc-end term ~ 1/sqrt(R^2 - D0^2) inherits the
@@ -457,10 +458,10 @@ static void check_ring_series(const char *spec, unsigned seed)
             double cond = 4 * DBL_EPSILON * fabs(gr[m]) * R * R / (R * R - D0 * D0);
             double ge = fmax(0.0, fabs(g[m] - gr[m]) - cond) / (peak / w);
             gworst = fmax(gworst, ge);
-            if (!(ge < 1e-13))
+            if (!(ge < 10 * tol))
                 print_message("# grad %d r %g rho %g dz %g: %.17g vs %.17g\n", m, r / w, rho / w,
                               dz / w, g[m], gr[m]);
-            assert_true(ge < 1e-13);
+            assert_true(ge < 10 * tol);
         }
     }
     assert_true(n_short > 150);
@@ -471,10 +472,11 @@ static void check_ring_series(const char *spec, unsigned seed)
 static void test_ring_series(void **state)
 {
     (void)state;
-    check_ring_series("gauss:w=0.002", 1);
-    check_ring_series("gauss:w=0.002,shift", 2);
-    check_ring_series("gauss:w=0.5,cutoff=2", 3);
-    check_ring_series("gauss:w=0.5,cutoff=5", 4);
+    check_ring_series("gauss:w=0.002", 1, 1e-14);
+    check_ring_series("gauss:w=0.002,shift", 2, 1e-14);
+    check_ring_series("gauss:w=0.5,cutoff=2", 3, 1e-14);
+    check_ring_series("gauss:w=0.5,cutoff=5", 4, 1e-14);
+    check_ring_series("gauss:w=0.5,cutoff=7", 5, 1e-14); /* X beyond the table: erf */
 }
 
 static void test_parse_errors(void **state)

@@ -1,0 +1,139 @@
+/* The plain and shifted Gaussian on r-z grids (cylindrical, no phi cells): the
+ * kernel's azimuthal average at each cell centre (r_i, z_j) for a particle, and its
+ * Gauss-Legendre line integral along a contact's branch.  The average is
+ * e^{-D0^2/2w^2} times a function of the cut (docs/fields.md, "Cylindrical grids
+ * without phi cells"), D0^2 = (r_i - rho)^2 + (z_j - z)^2, so the exponential is the
+ * product of a factor per column and one per row, computed once per object (per
+ * branch point for a segment) by dep_gauss_row's recurrence; the cut arc is mimas_gauss_ring_short's series, and
+ * the longer arcs near the axis mimas_kernel_ring's rule.  The values are those of
+ * mimas_kernel_ring to rounding. */
+#include <config.h>
+
+#include <math.h>
+
+#include "deposit_impl.h"
+#include "gauss_legendre.h"
+
+/* The average at the ring (r, z-offset dz) from the offsets' squares and factors. */
+static double ring_value(const mimas_weight *wt, double r, double rho, double dz, double dr2,
+                         double E, double grad[2])
+{
+    double D02 = dr2 + dz * dz, v;
+    if (!(D02 < wt->reach2)) {
+        if (grad)
+            grad[0] = grad[1] = 0.0;
+        return 0.0;
+    }
+    if (r > 0 && rho > 0 && mimas_gauss_ring_short(wt, r, rho, dz, D02, E, &v, grad))
+        return v;
+    return mimas_kernel_ring(wt, 3, r, rho, dz, grad);
+}
+
+/* Cell index box of an axis-frame point's reach, and room for its cells. */
+static int cell_box(const mimas_deposit *dp, const double a[3], double reach, int lo[3],
+                    int hi[3], mimas_weights *ws, int *ok)
+{
+    *ok = dep_candidate_box(dp, a, reach, lo, hi);
+    if (!*ok)
+        return MIMAS_OK;
+    size_t n = (size_t)(hi[0] - lo[0] + 1) * (hi[2] - lo[2] + 1);
+    return mimas_weights_reserve(ws, n) ? MIMAS_EIO : MIMAS_OK;
+}
+
+int mimas_gauss_sphere_rz(const mimas_deposit *dp, const double a[3], int with_grad,
+                          double scale, mimas_weights *ws)
+{
+    const mimas_weight *wt = dp->wt;
+    int lo[3], hi[3], ok;
+    ws->has_grad = with_grad;
+    if (cell_box(dp, a, mimas_weight_reach(wt), lo, hi, ws, &ok) || !ok)
+        return ok ? MIMAS_EIO : MIMAS_OK;
+    int nr = hi[0] - lo[0] + 1, nz = hi[2] - lo[2] + 1;
+    double *t = mimas_weights_scratch(ws, 3 * (size_t)nr + 2 * (size_t)nz);
+    if (!t)
+        return MIMAS_EIO;
+    double *rc = t, *dr2 = t + nr, *er = t + 2 * nr, *dz = t + 3 * nr, *ez = dz + nz;
+    double rho = hypot(a[0], a[1]);
+    for (int i = 0; i < nr; i++) {
+        rc[i] = dep_centre(dp, 0, lo[0] + i);
+        dr2[i] = (rc[i] - rho) * (rc[i] - rho);
+    }
+    for (int j = 0; j < nz; j++)
+        dz[j] = dep_centre(dp, 2, lo[2] + j) - a[2];
+    dep_gauss_row(dp, 0, lo[0], nr, rho, er, 1);
+    dep_gauss_row(dp, 2, lo[2], nz, a[2], ez, 1);
+    int idx[3] = {0, lo[1], 0};
+    for (int j = 0; j < nz; j++)
+        for (int i = 0; i < nr; i++) {
+            double g[2] = {0, 0};
+            double v = ring_value(wt, rc[i], rho, dz[j], dr2[i], er[i] * ez[j],
+                                  with_grad ? g : NULL);
+            if (v == 0.0 && g[0] == 0.0 && g[1] == 0.0)
+                continue;
+            idx[0] = lo[0] + i;
+            idx[2] = lo[2] + j;
+            size_t cell = mimas_grid_index(dp->grid, idx);
+            if (with_grad)
+                dep_put_grad(ws, cell, v * scale, g[0] * scale, 0.0, g[1] * scale);
+            else
+                dep_put(ws, cell, v * scale);
+        }
+    return MIMAS_OK;
+}
+
+int mimas_gauss_segment_rz(const mimas_deposit *dp, const double aa[3], const double ab[3],
+                           const double am[3], double reach, double scale, mimas_weights *ws)
+{
+    const mimas_weight *wt = dp->wt;
+    int lo[3], hi[3], ok;
+    ws->has_grad = 0;
+    if (cell_box(dp, am, reach, lo, hi, ws, &ok) || !ok)
+        return ok ? MIMAS_EIO : MIMAS_OK;
+    double b[3] = {ab[0] - aa[0], ab[1] - aa[1], ab[2] - aa[2]};
+    const double *xs, *wsg;
+    int n = dep_ring_rule(wt, sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]), &xs, &wsg);
+    int nr = hi[0] - lo[0] + 1, nz = hi[2] - lo[2] + 1;
+    /* per branch point q: rho_q, z_q, its weight; per column (row) and point: the
+     * offset's square (the offset) and its factor */
+    double *t = mimas_weights_scratch(ws, 3 * (size_t)n + nr + 2 * (size_t)n * (nr + nz));
+    if (!t)
+        return MIMAS_EIO;
+    double *rho = t, *zq = t + n, *wq = t + 2 * n, *rc = t + 3 * n, *dr2 = rc + nr;
+    double *er = dr2 + (size_t)n * nr, *dz = er + (size_t)n * nr, *ez = dz + (size_t)n * nz;
+    for (int q = 0; q < n; q++) {
+        double s, p[3];
+        gl_node(xs, wsg, n, q, 0.0, 1.0, &s, &wq[q]);
+        for (int m = 0; m < 3; m++)
+            p[m] = aa[m] + s * b[m];
+        rho[q] = hypot(p[0], p[1]);
+        zq[q] = p[2];
+    }
+    for (int i = 0; i < nr; i++) {
+        rc[i] = dep_centre(dp, 0, lo[0] + i);
+        for (int q = 0; q < n; q++)
+            dr2[i * n + q] = (rc[i] - rho[q]) * (rc[i] - rho[q]);
+    }
+    for (int j = 0; j < nz; j++) {
+        double zc = dep_centre(dp, 2, lo[2] + j);
+        for (int q = 0; q < n; q++)
+            dz[j * n + q] = zc - zq[q];
+    }
+    for (int q = 0; q < n; q++) {
+        dep_gauss_row(dp, 0, lo[0], nr, rho[q], er + q, (size_t)n);
+        dep_gauss_row(dp, 2, lo[2], nz, zq[q], ez + q, (size_t)n);
+    }
+    int idx[3] = {0, lo[1], 0};
+    for (int j = 0; j < nz; j++)
+        for (int i = 0; i < nr; i++) {
+            double sum = 0.0;
+            for (int q = 0; q < n; q++)
+                sum += wq[q] * ring_value(wt, rc[i], rho[q], dz[j * n + q], dr2[i * n + q],
+                                          er[i * n + q] * ez[j * n + q], NULL);
+            if (sum == 0.0)
+                continue;
+            idx[0] = lo[0] + i;
+            idx[2] = lo[2] + j;
+            dep_put(ws, mimas_grid_index(dp->grid, idx), sum * scale);
+        }
+    return MIMAS_OK;
+}
