@@ -1,5 +1,5 @@
 /* Tables of the Gaussian's ring series (internal to weight.c), written by
- * build-aux/gen_ring_tables.py: the binomial coefficients c_n = (2n choose n) / 4^n of
+ * averaging/gen_ring_tables.py: the binomial coefficients c_n = (2n choose n) / 4^n of
  * (1 - u^2)^{-1/2} = sum c_n u^{2n}; 1 / (j + 1/2); and M_{1/2}(X) = e^X sqrt(pi)
  * erf(sqrt X) / sqrt X = sum_k X^k / ((1/2)(3/2)..(k + 1/2)) on 0 <= X <= RING_XMAX as
  * Taylor polynomials of degree RING_DEG about the midpoints of intervals 1/RING_STEP long
