@@ -110,9 +110,6 @@ void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weig
     }
     dp->gauss_rz = dp->kernel && wt->kind != MIMAS_WEIGHT_LUCY &&
                    g->kind != MIMAS_GRID_CARTESIAN && !g->gridded[1] && dp->dims == 3;
-    if (dp->gauss_rz)
-        for (int d = 0; d < 3; d += 2)
-            dp->gq[d] = exp(-2.0 * dp->h[d] * dp->h[d] * wt->inv2w2);
     /* images along the periodic edge vectors: shifts k_a a + k_b b + k_c c */
     double e[3][3];
     mimas_box_edges(box, e);

@@ -45,8 +45,8 @@ typedef struct mimas_deposit {
     int gdir[3];           /* Cartesian: the gridded directions, dims of them */
     double inv_extent;     /* kernels: 1 / the box's extent along the directions
                             * they are integrated over (Cartesian; cylindrical z) */
-    int gauss_rz;          /* the plain or shifted Gaussian on an r-z grid: per-row factors
-                            * and the ring series (deposit_ring.c) */
+    int gauss_rz;          /* the plain or shifted Gaussian on an r-z grid: the ring
+                            * series cell by cell (deposit_ring.c) */
     int gauss_xyz;         /* the Gaussian on an x-y-z grid: separable (deposit_gauss.c) */
     double gq[3];          /* e^{-2 h^2 / 2w^2} per direction, for its 1-D factors */
 } mimas_deposit;

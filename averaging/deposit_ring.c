@@ -1,12 +1,11 @@
 /* The plain and shifted Gaussian on r-z grids (cylindrical, no phi cells): the
  * kernel's azimuthal average at each cell centre (r_i, z_j) for a particle, and its
- * Gauss-Legendre line integral along a contact's branch.  The average is
- * e^{-D0^2/2w^2} times a function of the cut (docs/fields.md, "Cylindrical grids
- * without phi cells"), D0^2 = (r_i - rho)^2 + (z_j - z)^2, so the exponential is the
- * product of a factor per column and one per row, computed once per object (per
- * branch point for a segment) by dep_gauss_row's recurrence; the cut arc is mimas_gauss_ring_short's series, and
- * the longer arcs near the axis mimas_kernel_ring's rule.  The values are those of
- * mimas_kernel_ring to rounding. */
+ * Gauss-Legendre line integral along a contact's branch (docs/fields.md, "Cylindrical
+ * grids without phi cells").  The average depends on the cell through
+ * D0^2 = (r_i - rho)^2 + (z_j - z)^2 and r_i rho: the squared offsets are computed once per
+ * column and row (per branch point for a segment); the cut arc is
+ * mimas_gauss_ring_short's series (no exponential: the table of M_{1/2}), the longer
+ * arcs near the axis mimas_kernel_ring's rule.  The values are mimas_kernel_ring's. */
 #include <config.h>
 
 #include <math.h>
@@ -14,9 +13,9 @@
 #include "deposit_impl.h"
 #include "gauss_legendre.h"
 
-/* The average at the ring (r, z-offset dz) from the offsets' squares and factors. */
+/* The average at the ring (r, z-offset dz) given (r - rho)^2. */
 static double ring_value(const mimas_weight *wt, double r, double rho, double dz, double dr2,
-                         double E, double grad[2])
+                         double grad[2])
 {
     double D02 = dr2 + dz * dz, v;
     if (!(D02 < wt->reach2)) {
@@ -24,7 +23,7 @@ static double ring_value(const mimas_weight *wt, double r, double rho, double dz
             grad[0] = grad[1] = 0.0;
         return 0.0;
     }
-    if (r > 0 && rho > 0 && mimas_gauss_ring_short(wt, r, rho, dz, D02, E, &v, grad))
+    if (r > 0 && rho > 0 && mimas_gauss_ring_short(wt, r, rho, dz, D02, &v, grad))
         return v;
     return mimas_kernel_ring(wt, 3, r, rho, dz, grad);
 }
@@ -49,10 +48,10 @@ int mimas_gauss_sphere_rz(const mimas_deposit *dp, const double a[3], int with_g
     if (cell_box(dp, a, mimas_weight_reach(wt), lo, hi, ws, &ok) || !ok)
         return ok ? MIMAS_EIO : MIMAS_OK;
     int nr = hi[0] - lo[0] + 1, nz = hi[2] - lo[2] + 1;
-    double *t = mimas_weights_scratch(ws, 3 * (size_t)nr + 2 * (size_t)nz);
+    double *t = mimas_weights_scratch(ws, 2 * (size_t)nr + (size_t)nz);
     if (!t)
         return MIMAS_EIO;
-    double *rc = t, *dr2 = t + nr, *er = t + 2 * nr, *dz = t + 3 * nr, *ez = dz + nz;
+    double *rc = t, *dr2 = t + nr, *dz = t + 2 * nr;
     double rho = hypot(a[0], a[1]);
     for (int i = 0; i < nr; i++) {
         rc[i] = dep_centre(dp, 0, lo[0] + i);
@@ -60,14 +59,11 @@ int mimas_gauss_sphere_rz(const mimas_deposit *dp, const double a[3], int with_g
     }
     for (int j = 0; j < nz; j++)
         dz[j] = dep_centre(dp, 2, lo[2] + j) - a[2];
-    dep_gauss_row(dp, 0, lo[0], nr, rho, er, 1);
-    dep_gauss_row(dp, 2, lo[2], nz, a[2], ez, 1);
     int idx[3] = {0, lo[1], 0};
     for (int j = 0; j < nz; j++)
         for (int i = 0; i < nr; i++) {
             double g[2] = {0, 0};
-            double v = ring_value(wt, rc[i], rho, dz[j], dr2[i], er[i] * ez[j],
-                                  with_grad ? g : NULL);
+            double v = ring_value(wt, rc[i], rho, dz[j], dr2[i], with_grad ? g : NULL);
             if (v == 0.0 && g[0] == 0.0 && g[1] == 0.0)
                 continue;
             idx[0] = lo[0] + i;
@@ -94,12 +90,12 @@ int mimas_gauss_segment_rz(const mimas_deposit *dp, const double aa[3], const do
     int n = dep_ring_rule(wt, sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]), &xs, &wsg);
     int nr = hi[0] - lo[0] + 1, nz = hi[2] - lo[2] + 1;
     /* per branch point q: rho_q, z_q, its weight; per column (row) and point: the
-     * offset's square (the offset) and its factor */
-    double *t = mimas_weights_scratch(ws, 3 * (size_t)n + nr + 2 * (size_t)n * (nr + nz));
+     * offset's square (the offset) */
+    double *t = mimas_weights_scratch(ws, 3 * (size_t)n + nr + (size_t)n * (nr + nz));
     if (!t)
         return MIMAS_EIO;
     double *rho = t, *zq = t + n, *wq = t + 2 * n, *rc = t + 3 * n, *dr2 = rc + nr;
-    double *er = dr2 + (size_t)n * nr, *dz = er + (size_t)n * nr, *ez = dz + (size_t)n * nz;
+    double *dz = dr2 + (size_t)n * nr;
     for (int q = 0; q < n; q++) {
         double s, p[3];
         gl_node(xs, wsg, n, q, 0.0, 1.0, &s, &wq[q]);
@@ -118,17 +114,12 @@ int mimas_gauss_segment_rz(const mimas_deposit *dp, const double aa[3], const do
         for (int q = 0; q < n; q++)
             dz[j * n + q] = zc - zq[q];
     }
-    for (int q = 0; q < n; q++) {
-        dep_gauss_row(dp, 0, lo[0], nr, rho[q], er + q, (size_t)n);
-        dep_gauss_row(dp, 2, lo[2], nz, zq[q], ez + q, (size_t)n);
-    }
     int idx[3] = {0, lo[1], 0};
     for (int j = 0; j < nz; j++)
         for (int i = 0; i < nr; i++) {
             double sum = 0.0;
             for (int q = 0; q < n; q++)
-                sum += wq[q] * ring_value(wt, rc[i], rho[q], dz[j * n + q], dr2[i * n + q],
-                                          er[i * n + q] * ez[j * n + q], NULL);
+                sum += wq[q] * ring_value(wt, rc[i], rho[q], dz[j * n + q], dr2[i * n + q], NULL);
             if (sum == 0.0)
                 continue;
             idx[0] = lo[0] + i;

@@ -4,9 +4,9 @@ from math import comb
 import mpmath as mp
 mp.mp.dps = 50
 N = 64; H = 192
-STEP = 4          # intervals per unit of X
+STEP = 16         # intervals per unit of X
 XMAX = 18         # the table covers 0 <= X <= XMAX (cutoffs up to 6)
-DEG = 9           # Taylor degree about each interval's midpoint
+DEG = 7           # Taylor degree about each interval's midpoint
 
 def M_half_taylor(x0, deg):
     # M_{1/2}(X) = sum_k X^k / ((1/2)(3/2)...(k+1/2)); coefficient j of (X - x0)^j

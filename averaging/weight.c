@@ -463,10 +463,14 @@ static double ring_m_half_at(double X)
     if (m >= RING_STEP * RING_XMAX)
         m = RING_STEP * RING_XMAX - 1;
     const double *c = ring_m_half[m];
-    double t = X - (m + 0.5) / RING_STEP, v = c[RING_DEG];
-    for (int j = RING_DEG - 1; j >= 0; j--)
-        v = v * t + c[j];
-    return v;
+    double t = X - (m + 0.5) / RING_STEP, t2 = t * t;
+#if RING_DEG != 7
+#error "ring_m_half_at evaluates degree 7"
+#endif
+    /* Estrin's scheme: shorter chains of dependent operations than Horner's */
+    double lo = (c[0] + c[1] * t) + t2 * (c[2] + c[3] * t);
+    double hi = (c[4] + c[5] * t) + t2 * (c[6] + c[7] * t);
+    return lo + t2 * t2 * hi;
 }
 
 /* The cut ring of the plain or shifted Gaussian by the binomial series (docs/fields.md,
@@ -478,11 +482,12 @@ static double ring_m_half_at(double X)
  * The terms fall like c_n y^n (T_n <= T_0): N + 1 of them leave < 1e-17 relative.
  * Upwards, T_{n+1} = ((n + 1/2) T_n - tail)/X loses (n + 1/2)/X per step, but each term
  * has a factor y = X/a: while a >= 4 (n + 2) the loss stays below a few ulp of the sum
- * (in U_n = X^n T_n there is no division); T_0 from the table of M_{1/2} (erf beyond it).
+ * (in U_n = X^n T_n there is no division); T_0 = tail M_{1/2}(X) from its table (beyond
+ * it E sqrt(pi) erf(sqrt X)/sqrt X).
  * Nearer the axis, T_{N+1} by its series and T_n = (tail + X T_{n+1})/(n + 1/2)
  * downwards (stable).  Returns 0 where it does not apply (y > 1/2, or a series for
  * T_{N+1} longer than the table of 1/(j + 1/2), X > ~100). */
-static int gauss_ring_series(const mimas_weight *wt, double E, double X, double a, double y,
+static int gauss_ring_series(const mimas_weight *wt, double D02, double X, double a, double y,
                              double I[2])
 {
     double tail = wt->tail, eps = 1e-17 * (1.0 - y), s0 = 0.0, s1 = 0.0;
@@ -491,7 +496,7 @@ static int gauss_ring_series(const mimas_weight *wt, double E, double X, double 
     /* upwards while a >= 4 (n + 2), to the first y^n below eps, in U_n = X^n T_n:
      * U_{n+1} = (n + 1/2) U_n - tail X^n, and y^n T_n = U_n / a^n */
     double U = X <= RING_XMAX ? tail * ring_m_half_at(X)
-                              : E * sqrt(M_PI) * erf(sqrt(X)) / sqrt(X);
+                              : exp(-D02 * wt->inv2w2) * sqrt(M_PI) * erf(sqrt(X)) / sqrt(X);
     double ia = 1.0 / a, ian = 1.0, xn = tail, yn = 1.0;
     for (int n = 0; 4.0 * (n + 2) <= a; n++) {
         double next = (n + 0.5) * U - xn;
@@ -547,11 +552,11 @@ static void arc_end_grad(const mimas_weight *wt, int dims, double um2, double r,
 }
 
 int mimas_gauss_ring_short(const mimas_weight *wt, double r, double rho, double dz, double D02,
-                           double E, double *v, double grad[2])
+                           double *v, double grad[2])
 {
     double rr = 4.0 * r * rho, R2 = wt->reach2, um2 = (R2 - D02) / rr, I[2];
     if (!(um2 <= 0.5) ||
-        !gauss_ring_series(wt, E, (R2 - D02) * wt->inv2w2, rr * wt->inv2w2, um2, I))
+        !gauss_ring_series(wt, D02, (R2 - D02) * wt->inv2w2, rr * wt->inv2w2, um2, I))
         return 0;
     /* (coef/pi) (I_0 - shift t_m); d/dr of D^2 is 2 (r - rho) + 4 rho u^2 */
     *v = wt->coef / M_PI * I[0];
@@ -592,7 +597,7 @@ double mimas_kernel_ring(const mimas_weight *wt, int dims, double r, double rho,
     }
     double v;
     if (dims == 3 && wt->kind != MIMAS_WEIGHT_LUCY && um2 <= 0.5 &&
-        mimas_gauss_ring_short(wt, r, rho, dz, D02, exp(-D02 * wt->inv2w2), &v, grad))
+        mimas_gauss_ring_short(wt, r, rho, dz, D02, &v, grad))
         return v;
     /* (1/pi) int_0^tm k(D(t)) dt, D^2 = D0^2 + 4 r rho sin^2(t/2): in u = sin(t/2) =
      * um sin(theta) while the arc is short (the Jacobian 2/sqrt(1 - u^2) stays smooth),

@@ -77,12 +77,11 @@ double mimas_kernel_ring(const mimas_weight *wt, int dims, double r, double rho,
                          double grad[2]);
 /* The plain or shifted Gaussian's average (dims 3) on a ring that its support cuts
  * short, by a binomial series (exact to rounding): the same as mimas_kernel_ring for
- * D0^2 = (r - rho)^2 + dz^2 < R^2, given E = e^{-D0^2/2w^2} (which a caller may have as
- * a product of factors).  Returns 0 (v, grad untouched) for longer arcs, where the
- * support reaches more than a quarter of the way round (sin^2(tm/2) > 1/2): the rule of
- * mimas_kernel_ring does those. */
+ * D0^2 = (r - rho)^2 + dz^2 < R^2 (the caller's D02).  Returns 0 (v, grad untouched) for
+ * longer arcs, where the support reaches more than a quarter of the way round
+ * (sin^2(tm/2) > 1/2): the rule of mimas_kernel_ring does those. */
 int mimas_gauss_ring_short(const mimas_weight *wt, double r, double rho, double dz, double D02,
-                           double E, double *v, double grad[2]);
+                           double *v, double grad[2]);
 
 #ifdef __cplusplus
 }
