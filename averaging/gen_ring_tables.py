@@ -26,8 +26,8 @@ def fmt(vals, indent="    "):
     return "\n".join(s)
 
 out = []
-out.append("""/* Tables of the Gaussian's ring series (internal to weight.c), written by
- * averaging/gen_ring_tables.py: the binomial coefficients c_n = (2n choose n) / 4^n of
+out.append("""/* Tables of the Gaussian's ring series (internal to weight.c, deposit_ring.c), written
+ * by averaging/gen_ring_tables.py: the binomial coefficients c_n = (2n choose n) / 4^n of
  * (1 - u^2)^{-1/2} = sum c_n u^{2n}; 1 / (j + 1/2); and M_{1/2}(X) = e^X sqrt(pi)
  * erf(sqrt X) / sqrt X = sum_k X^k / ((1/2)(3/2)..(k + 1/2)) on 0 <= X <= RING_XMAX as
  * Taylor polynomials of degree RING_DEG about the midpoints of intervals 1/RING_STEP long
@@ -44,5 +44,22 @@ for m in range(STEP * XMAX):
     c = M_half_taylor(x0, DEG)
     rows.append("    {" + fmt([float(v) for v in c], "     ").strip() + "},")
 out.append("static const double ring_m_half[RING_STEP * RING_XMAX][RING_DEG + 1] = {\n" + "\n".join(rows) + "\n};\n")
+out.append("""/* M_{1/2}(X) for 0 <= X <= RING_XMAX: the Taylor polynomial about the midpoint of X's
+ * interval, by Estrin's scheme (shorter chains of dependent operations than Horner's). */
+static inline double ring_m_half_at(double X)
+{
+    int m = (int)(X * RING_STEP);
+    if (m >= RING_STEP * RING_XMAX)
+        m = RING_STEP * RING_XMAX - 1;
+    const double *c = ring_m_half[m];
+    double t = X - (m + 0.5) / RING_STEP, t2 = t * t;
+#if RING_DEG != 7
+#error "ring_m_half_at evaluates degree 7"
+#endif
+    double lo = (c[0] + c[1] * t) + t2 * (c[2] + c[3] * t);
+    double hi = (c[4] + c[5] * t) + t2 * (c[6] + c[7] * t);
+    return lo + t2 * t2 * hi;
+}
+""")
 out.append("#endif")
 open("averaging/ring_tables.h", "w").write("\n".join(out) + "\n")

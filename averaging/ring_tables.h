@@ -1,4 +1,4 @@
-/* Tables of the Gaussian's ring series (internal to weight.c), written by
+/* Tables of the Gaussian's ring series (internal to weight.c and deposit_ring.c), written by
  * averaging/gen_ring_tables.py: the binomial coefficients c_n = (2n choose n) / 4^n of
  * (1 - u^2)^{-1/2} = sum c_n u^{2n}; 1 / (j + 1/2); and M_{1/2}(X) = e^X sqrt(pi)
  * erf(sqrt X) / sqrt X = sum_k X^k / ((1/2)(3/2)..(k + 1/2)) on 0 <= X <= RING_XMAX as
@@ -660,5 +660,22 @@ static const double ring_m_half[RING_STEP * RING_XMAX][RING_DEG + 1] = {
     {26610006.091948356, 25869553.804172404, 12595456.564992351, 4094247.37472738,
       999430.9324254488, 195398.48621448508, 31868.34372092577, 4459.238187439324,},
 };
+
+/* M_{1/2}(X) for 0 <= X <= RING_XMAX: the Taylor polynomial about the midpoint of X's
+ * interval, by Estrin's scheme (shorter chains of dependent operations than Horner's). */
+static inline double ring_m_half_at(double X)
+{
+    int m = (int)(X * RING_STEP);
+    if (m >= RING_STEP * RING_XMAX)
+        m = RING_STEP * RING_XMAX - 1;
+    const double *c = ring_m_half[m];
+    double t = X - (m + 0.5) / RING_STEP, t2 = t * t;
+#if RING_DEG != 7
+#error "ring_m_half_at evaluates degree 7"
+#endif
+    double lo = (c[0] + c[1] * t) + t2 * (c[2] + c[3] * t);
+    double hi = (c[4] + c[5] * t) + t2 * (c[6] + c[7] * t);
+    return lo + t2 * t2 * hi;
+}
 
 #endif

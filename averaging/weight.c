@@ -455,24 +455,6 @@ static double radial_kernel(const mimas_weight *wt, int dims, double D2, double 
     return e - wt->coef * wt->shift;
 }
 
-/* M_{1/2}(X) = e^X sqrt(pi) erf(sqrt X)/sqrt X for 0 <= X <= RING_XMAX: the table's
- * Taylor polynomial about the midpoint of X's interval (ring_tables.h). */
-static double ring_m_half_at(double X)
-{
-    int m = (int)(X * RING_STEP);
-    if (m >= RING_STEP * RING_XMAX)
-        m = RING_STEP * RING_XMAX - 1;
-    const double *c = ring_m_half[m];
-    double t = X - (m + 0.5) / RING_STEP, t2 = t * t;
-#if RING_DEG != 7
-#error "ring_m_half_at evaluates degree 7"
-#endif
-    /* Estrin's scheme: shorter chains of dependent operations than Horner's */
-    double lo = (c[0] + c[1] * t) + t2 * (c[2] + c[3] * t);
-    double hi = (c[4] + c[5] * t) + t2 * (c[6] + c[7] * t);
-    return lo + t2 * t2 * hi;
-}
-
 /* The cut ring of the plain or shifted Gaussian by the binomial series (docs/fields.md,
  * "Cylindrical grids without phi cells"): with u = sin(t/2), u_m = sin(t_m/2), y = u_m^2,
  * a = 2 r rho/w^2 and X = (R^2 - D0^2)/2w^2 = a y, (1 - u^2)^{-1/2} = sum_n c_n u^{2n} gives
