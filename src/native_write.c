@@ -32,7 +32,8 @@
 #include "parameters_h5.h"
 
 #define PARTICLE_CHUNK_MAX 32768   /* rows of a per-particle chunk */
-#define ROW_CHUNK 32768            /* rows of a per-contact chunk */
+#define ROW_CHUNK 32768            /* most rows of a per-contact chunk */
+#define ROW_CHUNK_MIN 1024         /* least rows of a per-contact chunk */
 #define FRAME_CHUNK 1024           /* rows of a per-frame chunk */
 
 /* A flat (CSR) table of contacts or wall contacts over all frames. */
@@ -420,6 +421,18 @@ static int create_gas(mimas_writer *w, const mimas_gas *gs, mimas_error *err)
     return MIMAS_OK;
 }
 
+/* Rows per chunk of a flat table whose first frame has n rows.  A commit rewrites the
+ * table's last, partly filled chunk (compressed, so elsewhere in the file), and space is
+ * never reused (see the top): each commit leaves about half a chunk behind.  An eighth
+ * of a frame's rows per chunk keeps that near 6 % of the data for one commit per frame
+ * (a slow simulation), against several times the data with chunks much larger than a
+ * frame; ROW_CHUNK_MIN keeps chunks of small frames worth compressing. */
+static hsize_t flat_chunk_rows(size_t n)
+{
+    size_t rows = n / 8;
+    return rows < ROW_CHUNK_MIN ? ROW_CHUNK_MIN : (rows > ROW_CHUNK ? ROW_CHUNK : rows);
+}
+
 static int create_flat(mimas_writer *w, flat_table *t, const void *tab, mimas_error *err)
 {
     hid_t g = make_group(w->file, t->group);
@@ -455,10 +468,11 @@ static int create_flat(mimas_writer *w, flat_table *t, const void *tab, mimas_er
         return mimas_error_set(err, MIMAS_EIO, "out of memory for the native writer");
     }
     t->ncols = native_cols_of(tab, t->desc, t->cols);
+    hsize_t rows = flat_chunk_rows(*(const size_t *)((const char *)tab + t->desc->off_n));
     for (size_t c = 0; c < t->ncols; c++) {
         native_col *nc = &t->cols[c];
         int rank = nc->ncomp == 1 ? 1 : 2;
-        hsize_t dims[2] = {0, (hsize_t)nc->ncomp}, chunk[2] = {ROW_CHUNK, (hsize_t)nc->ncomp};
+        hsize_t dims[2] = {0, (hsize_t)nc->ncomp}, chunk[2] = {rows, (hsize_t)nc->ncomp};
         nc->ds = h5_create_growing(g, nc->name, native_file_type(nc->type), rank, 1, dims,
                                    chunk, NULL, w->opt.deflate);
         if (nc->ds < 0) {
