@@ -99,14 +99,21 @@ struct mimas_writer {
     size_t committed;
     double staged_bytes;   /* data of the frames staged since the last commit */
     double last_commit;    /* monotonic seconds */
+    double opened;         /* monotonic seconds when the file was opened */
 };
 
-/* A commit (flush) rewrites the metadata of every dataset, at the end of
- * the file: it is worth it once the frames since the last one hold about as
- * much data, or once COMMIT_SECONDS have passed.  A crash loses at most the
- * frames of the last COMMIT_SECONDS. */
-#define COMMIT_SECONDS 1.0
+/* A commit (flush) rewrites the metadata of every dataset, at the end of the file, and
+ * the old copies stay behind (space is never reused): it is worth it once the frames
+ * since the last one hold COMMIT_DATA_PER_METADATA times as much data (what commits
+ * leave behind is then at most a quarter of the data), or once the commit interval
+ * has passed: 1 s at first, growing with the time the file has been open (a twentieth
+ * of it, at most COMMIT_SECONDS_MAX), so that a slow simulation of an hour commits
+ * every 30 s instead of every second.  A crash loses at most the frames of the last
+ * interval: the last 5 % of the run, at most 30 s. */
+#define COMMIT_SECONDS_MIN 1.0
+#define COMMIT_SECONDS_MAX 30.0
 #define COMMIT_BYTES_PER_DATASET 4096.0
+#define COMMIT_DATA_PER_METADATA 4.0
 
 static double seconds_now(void)
 {
@@ -202,6 +209,7 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
     if (!w)
         return mimas_error_set(err, MIMAS_EIO, "%s: out of memory for the writer", path);
     w->tmp_slot = -1;
+    w->opened = seconds_now();
     if (o)
         w->opt = *o;
     else
@@ -940,8 +948,13 @@ int mimas_writer_append(mimas_writer *w, const mimas_frame *f, mimas_error *err)
         return rc;
     double datasets = (double)(w->npcols + 6 + (w->has_contacts ? w->contacts.ncols + 3 : 0) +
                                (w->has_walls ? w->walls.ncols + 3 : 0));
-    if (w->committed == 0 || w->staged_bytes >= COMMIT_BYTES_PER_DATASET * datasets ||
-        seconds_now() - w->last_commit >= COMMIT_SECONDS)
+    double now = seconds_now(), interval = (now - w->opened) / 20.0;
+    interval = interval < COMMIT_SECONDS_MIN
+                   ? COMMIT_SECONDS_MIN
+                   : (interval > COMMIT_SECONDS_MAX ? COMMIT_SECONDS_MAX : interval);
+    if (w->committed == 0 ||
+        w->staged_bytes >= COMMIT_DATA_PER_METADATA * COMMIT_BYTES_PER_DATASET * datasets ||
+        now - w->last_commit >= interval)
         rc = mimas_writer_commit(w, err);
     return rc;
 }
