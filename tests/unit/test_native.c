@@ -38,13 +38,22 @@ static void make_frame(mimas_frame *f, unsigned long seed, size_t k, int triclin
     gsl_rng_free(rng);
 }
 
-static void write_frames(const char *path, unsigned long seed, size_t nframes, int triclinic)
+/* A writer on path with the default options. */
+static mimas_writer *open_writer(const char *path)
 {
     mimas_writer *w;
     mimas_error err;
     mimas_writer_options o;
     mimas_writer_options_default(&o);
-    assert_int_equal(mimas_writer_open(&w, path, &o, &err), MIMAS_OK);
+    if (mimas_writer_open(&w, path, &o, &err))
+        fail_msg("open %s: %s", path, err.msg);
+    return w;
+}
+
+static void write_frames(const char *path, unsigned long seed, size_t nframes, int triclinic)
+{
+    mimas_writer *w = open_writer(path);
+    mimas_error err;
     mimas_frame f;
     mimas_frame_init(&f);
     for (size_t k = 0; k < nframes; k++) {
@@ -413,11 +422,8 @@ static void test_commits_leave_little_unused_space(void **state)
 {
     (void)state;
     const char *path = scratch_path("commits.h5");
-    mimas_writer *w;
+    mimas_writer *w = open_writer(path);
     mimas_error err;
-    mimas_writer_options o;
-    mimas_writer_options_default(&o);
-    assert_int_equal(mimas_writer_open(&w, path, &o, &err), MIMAS_OK);
     mimas_frame f;
     mimas_frame_init(&f);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
