@@ -228,9 +228,6 @@ static int setup(void *ctx, const void *data, mimas_error *err)
     t->stats_n = ns < 1 ? 1 : (size_t)ns;
     t->stats_w = (s1 - s0) / (double)t->stats_n;
     int root = mimas_par_rank() == 0;
-    if (root && !u->in->quiet && (!a->tube.has_range || !(a->tube.slice > 0) || !(a->tube.diameter > 0)))
-        fprintf(stderr, "mimas plugs: tube radius %g m, %zu slices of %g m over %g:%g m, "
-                        "d = %g m\n", o->geom.radius, o->slices.n, o->slices.w, s0, s1, d);
     if ((rc = mimas_axial_create(&u->ax, o, err)) ||
         (rc = mimas_tracker_create(&u->tr, t, err)))
         return rc;
@@ -256,6 +253,10 @@ static int setup(void *ctx, const void *data, mimas_error *err)
             return rc;
         u->axial_on = 1;
     }
+    /* the defaults taken, once everything is set up (an error is then its one line) */
+    if (!u->in->quiet && (!a->tube.has_range || !(a->tube.slice > 0) || !(a->tube.diameter > 0)))
+        fprintf(stderr, "mimas plugs: tube radius %g m, %zu slices of %g m over %g:%g m, "
+                        "d = %g m\n", o->geom.radius, o->slices.n, o->slices.w, s0, s1, d);
     return MIMAS_OK;
 }
 
