@@ -215,7 +215,8 @@ static int cell_of(const mimas_grid *g, const double *h, const double q[3], size
 }
 
 /* Grid coordinates (x y z, or r phi z with phi mapped into the grid's range
- * where possible) of an axis-frame point. */
+ * where possible; without phi cells phi is the grid's lower bound) of an axis-frame
+ * point. */
 static void grid_coords(const mimas_grid *g, const double a[3], double q[3])
 {
     if (g->kind == MIMAS_GRID_CARTESIAN) {
@@ -223,6 +224,11 @@ static void grid_coords(const mimas_grid *g, const double a[3], double q[3])
         return;
     }
     q[0] = hypot(a[0], a[1]);
+    if (!g->gridded[1]) { /* one phi cell: the angle does not matter */
+        q[1] = g->lo[1];
+        q[2] = a[2];
+        return;
+    }
     double phi = atan2(a[1], a[0]);
     while (phi < g->lo[1])
         phi += 2 * M_PI;
