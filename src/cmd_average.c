@@ -167,9 +167,11 @@ static int write_rows(cli_table *t, const mimas_average *avg, int grid_none,
             if (fast < 0)
                 fast = d;
         }
-    double *mean = malloc(cells * nf * sizeof *mean), *sd = malloc(cells * nf * sizeof *sd),
-           *count = malloc(cells * nf * sizeof *count);
-    int rc = mean && sd && count ? mimas_average_fields(avg, mean, sd, count) : -1;
+    /* the spread only for --errors */
+    double *mean = malloc(cells * nf * sizeof *mean),
+           *sd = errors ? malloc(cells * nf * sizeof *sd) : NULL,
+           *count = errors ? malloc(cells * nf * sizeof *count) : NULL;
+    int rc = mean && (!errors || (sd && count)) ? mimas_average_fields(avg, mean, sd, count) : -1;
     for (size_t cell = 0; !rc && cell < cells; cell++) {
         double ctr[3];
         if (!grid_none)
@@ -181,7 +183,8 @@ static int write_rows(cli_table *t, const mimas_average *avg, int grid_none,
         for (int d = 0; d < 3 && !grid_none; d++)
             if (g->gridded[d])
                 cli_table_double(t, ctr[d]);
-        const double *m = &mean[cell * nf], *s = &sd[cell * nf], *n = &count[cell * nf];
+        const double *m = &mean[cell * nf], *s = errors ? &sd[cell * nf] : NULL,
+                     *n = errors ? &count[cell * nf] : NULL;
         for (size_t k = 0; k < nf; k++) {
             if (!want[k])
                 continue;
