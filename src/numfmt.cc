@@ -14,6 +14,10 @@
 #define FMT_USE_FULL_CACHE_DRAGONBOX 1
 #include <fmt/format.h>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 #include <charconv>
 #include <cstdint>
 #include <cstring>
@@ -21,12 +25,13 @@
 
 namespace {
 
-// The eight decimal digits of x < 10^8, most significant first, as ASCII into o[0..7]:
-// x = 10^4 hi + lo is split into four pairs of digits (hi/100, hi%100, lo/100, lo%100)
+// Without SSE2: the eight decimal digits of x < 10^8, most significant first, as ASCII into
+// o[0..7]: x = 10^4 hi + lo is split into four pairs of digits (hi/100, hi%100, lo/100, lo%100)
 // held in the 16-bit lanes of one 64-bit word, each pair into its tens and units byte
 // (the divisions by 100 and 10 as multiplications that are exact in the ranges used:
 // 10486/2^20 for x < 10^4, 103/2^10 for x < 100); the lanes are in memory order on a
 // little-endian machine, and on a big-endian one the bytes are swapped before the store.
+#ifndef __SSE2__
 inline void eight_digits(uint32_t x, char *o)
 {
     uint64_t hi = x / 10000, lo = x % 10000;
@@ -40,6 +45,7 @@ inline void eight_digits(uint32_t x, char *o)
 #endif
     std::memcpy(o, &w, 8);
 }
+#endif
 
 constexpr uint64_t pow10_table[18] = {1ULL,
                                       10ULL,
@@ -60,18 +66,43 @@ constexpr uint64_t pow10_table[18] = {1ULL,
                                       10000000000000000ULL,
                                       100000000000000000ULL};
 
-// The 17 digits of s < 10^17, with leading zeros, into d[0..16] (below 10^8 only the
-// last eight, d[9..16], are written: the caller reads no more than the digits of s).
+#ifdef __SSE2__
+// The sixteen digits of r < 10^16, with leading zeros, into o[0..15]: r = 10^8 b + c, then
+// b and c each into two groups of four digits (b / 10^4, b % 10^4, c / 10^4, c % 10^4) in
+// the 16-bit lanes 0-3, these into pairs of digits (the quotient and remainder by 100),
+// the pairs into tens and units, one byte each; the divisions are multiplications by
+// 2^45 / 10^4 (exact below 2^32), 2^19 / 100 (exact below 43699) and 2^16 / 10 (exact
+// below 16389), rounded up.
+inline void sixteen_digits(uint64_t r, char *o)
+{
+    uint64_t b = r / 100000000, c = r % 100000000;
+    __m128i v = _mm_set_epi64x((long long)c, (long long)b);
+    __m128i q4 = _mm_srli_epi64(_mm_mul_epu32(v, _mm_set1_epi32((int)0xD1B71759)), 45);
+    __m128i r4 = _mm_sub_epi64(v, _mm_mul_epu32(q4, _mm_set1_epi32(10000)));
+    __m128i groups = _mm_shuffle_epi32(_mm_or_si128(q4, _mm_slli_epi64(r4, 16)),
+                                       _MM_SHUFFLE(3, 1, 2, 0));
+    __m128i q2 = _mm_srli_epi16(_mm_mulhi_epu16(groups, _mm_set1_epi16(5243)), 3);
+    __m128i r2 = _mm_sub_epi16(groups, _mm_mullo_epi16(q2, _mm_set1_epi16(100)));
+    __m128i pairs = _mm_unpacklo_epi16(q2, r2);
+    __m128i tens = _mm_mulhi_epu16(pairs, _mm_set1_epi16(6554));
+    __m128i units = _mm_sub_epi16(pairs, _mm_mullo_epi16(tens, _mm_set1_epi16(10)));
+    __m128i text =
+        _mm_or_si128(_mm_or_si128(tens, _mm_slli_epi16(units, 8)), _mm_set1_epi8('0'));
+    _mm_storeu_si128(reinterpret_cast<__m128i *>(o), text);
+}
+#endif
+
+// The 17 digits of s < 10^17, with leading zeros, into d[0..16].
 inline void seventeen_digits(uint64_t s, char *d)
 {
-    if (s < pow10_table[8]) {
-        eight_digits((uint32_t)s, d + 9);
-        return;
-    }
     uint64_t a = s / pow10_table[16], r = s % pow10_table[16];
     d[0] = (char)('0' + a);
+#ifdef __SSE2__
+    sixteen_digits(r, d + 1);
+#else
     eight_digits((uint32_t)(r / pow10_table[8]), d + 1);
     eight_digits((uint32_t)(r % pow10_table[8]), d + 9);
+#endif
 }
 
 // A fixed-size copy of up to 17 digits (two vector moves): the buffers have room past the
@@ -116,7 +147,8 @@ extern "C" size_t mimas_format_double(double v, char *buf)
     uint64_t s = dec.significand; // < 10^17
     int nd = fmt::detail::count_digits(s);
     int e = dec.exponent + nd - 1;
-    char d[48] = {0}; // the digits of s end at d[16]; d[17..47] is room for the copies
+    char d[48]; // the digits of s end at d[16]; d[17..47] is room for the copies
+    std::memset(d + 17, 0, sizeof d - 17);
     const char *src = d + 17 - nd;
     if (e >= -4 && e < 17) {
         int point = e + 1; // digits before the decimal point
