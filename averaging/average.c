@@ -13,8 +13,8 @@
 #include "contact_point.h"
 #include "deposit.h"
 #include "fields.h"
-#include "parallel.h"
 #include "simd.h"
+#include "parallel.h"
 #include "voronoi.h"
 
 struct mimas_average {
@@ -200,7 +200,8 @@ typedef struct particle_vals {
     double stress[9];           /* V_cell sigma in the local basis */
 } particle_vals;
 
-/* The usual case in one tight loop: the particle block and the gradients. */
+/* The usual case in one tight loop: the particle block and the gradients, four
+ * sums at a time (the same products and sums as element by element). */
 MIMAS_SIMD
 static void add_particle_grad(double *restrict S0, const mimas_weights *ws,
                               const particle_vals *p)
@@ -210,9 +211,24 @@ static void add_particle_grad(double *restrict S0, const mimas_weights *ws,
     memcpy(qg, p->qg, sizeof qg);
     const size_t *cell = ws->cell;
     const double *wv = ws->w, *grad = ws->grad;
+#if defined(MIMAS_HAVE_V4D)
+    enum { NV = S_PARTICLE_END / 4 };
+    v4d qv[NV], gv = *(const v4d *)qg;
+    for (int m = 0; m < NV; m++)
+        qv[m] = *(const v4d *)(q + 4 * m);
+#endif
     for (size_t k = 0; k < ws->n; k++) {
         double *restrict S = S0 + cell[k] * NSUMS, w = wv[k];
         double g0 = grad[3 * k], g1 = grad[3 * k + 1], g2 = grad[3 * k + 2];
+#if defined(MIMAS_HAVE_V4D)
+        for (int m = 0; m < NV; m++)
+            *(v4d *)(S + 4 * m) += qv[m] * w;
+        for (int m = 4 * NV; m < S_PARTICLE_END; m++)
+            S[m] += q[m] * w;
+        *(v4d *)(S + S_G) += gv * g0;
+        *(v4d *)(S + S_G + 4) += gv * g1;
+        *(v4d *)(S + S_G + 8) += gv * g2;
+#else
         for (int m = 0; m < S_PARTICLE_END; m++)
             S[m] += q[m] * w;
         for (int m = 0; m < 4; m++)
@@ -221,6 +237,7 @@ static void add_particle_grad(double *restrict S0, const mimas_weights *ws,
             S[S_G + 4 + m] += qg[m] * g1;
         for (int m = 0; m < 4; m++)
             S[S_G + 8 + m] += qg[m] * g2;
+#endif
     }
 }
 
@@ -264,10 +281,23 @@ static void add_contact(double *restrict S0, const mimas_weights *ws, const doub
     memcpy(q, qin, sizeof q);
     const size_t *cell = ws->cell;
     const double *wv = ws->w;
+#if defined(MIMAS_HAVE_V4D)
+    v4d q0 = *(const v4d *)q, q1 = *(const v4d *)(q + 4), q2 = *(const v4d *)(q + 8),
+        q3 = *(const v4d *)(q + 12);
+#endif
     for (size_t k = 0; k < ws->n; k++) {
         double *restrict S = S0 + cell[k] * NSUMS + S_C, w = wv[k];
+#if defined(MIMAS_HAVE_V4D)
+        *(v4d *)S += q0 * w;
+        *(v4d *)(S + 4) += q1 * w;
+        *(v4d *)(S + 8) += q2 * w;
+        *(v4d *)(S + 12) += q3 * w;
+        S[16] += q[16] * w;
+        S[17] += q[17] * w;
+#else
         for (int m = 0; m < 18; m++)
             S[m] += q[m] * w;
+#endif
     }
 }
 

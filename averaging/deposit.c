@@ -77,6 +77,30 @@ static int same_projection(const mimas_deposit *dp, const mimas_grid *g, int s, 
     return 1;
 }
 
+/* The image of a box B shifted by s misses the grid G if along some direction the
+ * shift is longer than G's extent less the box's clearance from G's faces there: a
+ * box whose clearance exceeds m = max over shifts of min over directions of
+ * (G_d - |s_d|) on every side meets no image (for a grid spanning a periodic
+ * orthogonal box, m = 0: every object inside the grid).  Directions a kernel is
+ * integrated over do not count (image_reaches ignores them). */
+static double image_margin(const mimas_deposit *dp)
+{
+    const mimas_grid *g = dp->grid;
+    if (g->kind != MIMAS_GRID_CARTESIAN)
+        return INFINITY;
+    double m = -INFINITY;
+    for (int s = 1; s < dp->nshift; s++) {
+        double best = INFINITY;
+        for (int d = 0; d < 3; d++) {
+            if (dp->kernel && !g->gridded[d])
+                continue;
+            best = fmin(best, (g->hi[d] - g->lo[d]) - fabs(dp->shift[s][d]));
+        }
+        m = fmax(m, best);
+    }
+    return m;
+}
+
 void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,
                         const mimas_box *box, int grid_none)
 {
@@ -134,6 +158,7 @@ void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weig
                     if (!dup)
                         dp->nshift++;
                 }
+    dp->image_margin = image_margin(dp);
 }
 
 /* Cell index range [i0, i1] of direction d overlapping [lo, hi] (grid
@@ -244,6 +269,24 @@ static int image_reaches(const mimas_deposit *dp, int s, const double lo[3], con
             continue;
         if (hi[d] + dp->shift[s][d] < g->lo[d] || lo[d] + dp->shift[s][d] > g->hi[d])
             return 0;
+    }
+    return 1;
+}
+
+/* How many of the image shifts to try for an object with bounding box [lo, hi]: only
+ * the first (zero) one when the box is clear of the grid's faces by more than the
+ * image margin, else all of them. */
+static int images_to_try(const mimas_deposit *dp, const double lo[3], const double hi[3])
+{
+    const mimas_grid *g = dp->grid;
+    double m = dp->image_margin;
+    if (dp->nshift == 1 || !(m < INFINITY))
+        return dp->nshift;
+    for (int d = 0; d < 3; d++) {
+        if (dp->kernel && !g->gridded[d])
+            continue;
+        if (!(lo[d] > g->lo[d] + m && hi[d] < g->hi[d] - m))
+            return dp->nshift;
     }
     return 1;
 }
@@ -425,8 +468,8 @@ int mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, i
     double reach = dp->kernel ? mimas_weight_reach(dp->wt) : R;
     double blo[3] = {x[0] - reach, x[1] - reach, x[2] - reach};
     double bhi[3] = {x[0] + reach, x[1] + reach, x[2] + reach};
-    int rc = MIMAS_OK;
-    for (int s = 0; s < dp->nshift && !rc; s++) {
+    int rc = MIMAS_OK, nimg = images_to_try(dp, blo, bhi);
+    for (int s = 0; s < nimg && !rc; s++) {
         if (!image_reaches(dp, s, blo, bhi))
             continue;
         double xs[3] = {x[0] + dp->shift[s][0], x[1] + dp->shift[s][1], x[2] + dp->shift[s][2]};
@@ -609,8 +652,8 @@ int mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const doub
         blo[d] = m - reach;
         bhi[d] = m + reach;
     }
-    int rc = MIMAS_OK;
-    for (int s = 0; s < dp->nshift && !rc; s++) {
+    int rc = MIMAS_OK, nimg = images_to_try(dp, blo, bhi);
+    for (int s = 0; s < nimg && !rc; s++) {
         if (!image_reaches(dp, s, blo, bhi))
             continue;
         double as[3], bs[3], aa[3], ab[3], mid[3], am[3];

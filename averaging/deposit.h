@@ -38,6 +38,9 @@ typedef struct mimas_deposit {
     double box_volume;
     int nshift;            /* periodic image shifts (the first is zero) */
     double shift[27][3];
+    double image_margin;   /* Cartesian grids: an object whose bounding box lies inside
+                            * the grid by more than this on every side has no image
+                            * that reaches it (INFINITY: always search the images) */
     double h[3];           /* cell sizes of the grid */
     double cart_volume;    /* cell volume of a Cartesian grid */
     int kernel;            /* a kernel weight (Gaussian, Lucy, Shepard) */

@@ -218,18 +218,12 @@ static inline double shell_cell(const shell_consts *sc, int a_in, int b_in, doub
 
 enum { SEG_MAXNODE = 64 };
 
-/* Four doubles in one register where the compiler has vector types (GCC, Clang): the
- * row's sums four cells at a time (unaligned loads and stores). */
-#if defined(__GNUC__)
-typedef double v4d __attribute__((vector_size(32), aligned(8), may_alias));
-#endif
-
 /* vrow[c] = sum_k f[k] ex[k n + c] for the cells c of [c0, c1) (c1 - c0 a multiple of 4) */
 static inline void node_sums(const double *ex, size_t n, const double *f, int nq, int c0,
                              int c1, double *vrow)
 {
     for (int c = c0; c < c1; c += 4) {
-#if defined(__GNUC__)
+#if defined(MIMAS_HAVE_V4D)
         v4d acc = {0, 0, 0, 0};
         for (int k = 0; k < nq; k++)
             acc += *(const v4d *)(ex + (size_t)k * n + c) * f[k];
@@ -243,6 +237,52 @@ static inline void node_sums(const double *ex, size_t n, const double *f, int nq
         }
 #endif
     }
+}
+
+/* A row of cells along x and the segment: what the distance from a cell centre to the
+ * segment needs (the cell's offsets from a and b squared, along x and across). */
+typedef struct row_geom {
+    const double *qa0, *qb0, *dx0; /* per cell: (c - a_x)^2, (c - b_x)^2, c - a_x */
+    double qay, qby, tyz;           /* across: |r - a|^2, |r - b|^2, (r - a).b */
+    double bx, l2, inv_l2, R2;
+} row_geom;
+
+/* Whether cell i of the row is within R of the segment: its distance to the nearest
+ * point, a, b or the foot of the perpendicular. */
+static inline int within_reach(const row_geom *rg, int i)
+{
+    double t = rg->dx0[i] * rg->bx + rg->tyz, dist2;
+    if (t <= 0)
+        dist2 = rg->qa0[i] + rg->qay;
+    else if (t >= rg->l2)
+        dist2 = rg->qb0[i] + rg->qby;
+    else
+        dist2 = rg->qa0[i] + rg->qay - t * t * rg->inv_l2;
+    return dist2 < rg->R2;
+}
+
+/* The cells [c0, c1] of the row (n cells) within R of the segment, given the position
+ * xs (in cells from the first cell's centre) of the row's point nearest to it; 0 when
+ * there are none.  The set is an interval holding xs: if it holds a cell, it holds the
+ * nearest cell on that side of xs, so the two cells about xs decide. */
+static inline int reach_span(const row_geom *rg, double xs, int n, int *c0, int *c1)
+{
+    double f = floor(xs);
+    int s0 = f < 0 ? -1 : (f >= n ? n - 1 : (int)f), s;
+    if (s0 >= 0 && within_reach(rg, s0))
+        s = s0;
+    else if (s0 + 1 < n && within_reach(rg, s0 + 1))
+        s = s0 + 1;
+    else
+        return 0;
+    int lo = s, hi = s;
+    while (lo > 0 && within_reach(rg, lo - 1))
+        lo--;
+    while (hi < n - 1 && within_reach(rg, hi + 1))
+        hi++;
+    *c0 = lo;
+    *c1 = hi;
+    return 1;
 }
 
 /* The uncut part: with d = r - a (the cell centre from a), node s of the rule and
@@ -363,10 +403,17 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
                 continue;
             size_t row = (size_t)lo[0] + (size_t)g->n[0] * ((size_t)(lo[1] + j) +
                                                             (size_t)g->n[1] * (size_t)(lo[2] + kz));
-            /* the cells with the whole segment within the cutoff: an interval (the two
-             * balls' intersection with the row) */
+            /* The cells within R of the segment form an interval of the row (the
+             * distance to a segment is convex along a line), holding the point nearest
+             * to the segment, x = a + ty b: walk out from the cells on either side of
+             * it.  The cells with the whole segment within R (the two balls'
+             * intersection) are an interval inside it. */
+            row_geom rg = {qa[0], qb[0], dx[0], qay, qby, tyz, bv[0], l2, inv_l2, R2};
+            int c0, c1;
+            if (!reach_span(&rg, (ty * bv[0] - dx[0][0]) / dp->h[0], n[0], &c0, &c1))
+                continue;
             double ra = R2 - qay, rb = R2 - qby;
-            int i0 = 0, i1 = n[0] - 1;
+            int i0 = c0, i1 = c1;
             while (i0 <= i1 && !(qa[0][i0] < ra && qb[0][i0] < rb))
                 i0++;
             while (i1 >= i0 && !(qa[0][i1] < ra && qb[0][i1] < rb))
@@ -380,25 +427,19 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
                 double ayz = coef * ea[1][j] * ea[2][kz];
                 for (int i = i0; i <= i1; i++)
                     dep_put(ws, row + (size_t)i, ayz * ea[0][i] * vrow[i] - sh);
+            } else {
+                i0 = c1 + 1; /* no such cells: every cell of [c0, c1] is cut */
+                i1 = c1;
             }
-            /* the others, where the cut ball cuts the segment */
+            /* the others, where the cut ball cuts the segment: [c0, i0) and (i1, c1] */
             double ebyz = eb[1][j] * eb[2][kz], eayz = ea[1][j] * ea[2][kz];
-            for (int i = 0; i < n[0]; i++) {
-                if (i == i0 && i0 <= i1) {
+            for (int i = c0; i <= c1; i++) {
+                if (i == i0) {
                     i = i1;
                     continue;
                 }
                 double qai = qa[0][i] + qay, qbi = qb[0][i] + qby;
-                /* nearest point of the segment: a, b or the foot of the perpendicular */
-                double t = dx[0][i] * bv[0] + tyz, dist2;
-                if (t <= 0)
-                    dist2 = qai;
-                else if (t >= l2)
-                    dist2 = qbi;
-                else
-                    dist2 = qai - t * t * inv_l2;
-                if (dist2 >= R2)
-                    continue;
+                double t = dx[0][i] * bv[0] + tyz;
                 double v = shell_cell(&sc, qai < R2, qbi < R2, t * inv_len, qai, len,
                                       ea[0][i] * eayz, eb[0][i] * ebyz);
                 if (v != 0.0)

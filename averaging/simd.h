@@ -14,4 +14,13 @@
 #define MIMAS_SIMD
 #endif
 
+/* v4d: four doubles in one register where the compiler has vector types (GCC,
+ * Clang), for loops the compiler does not vectorise by itself; unaligned and
+ * aliasing anything, so that any double array can be read and written four at a
+ * time.  Element by element the same operations as the scalar code. */
+#if defined(__GNUC__)
+#define MIMAS_HAVE_V4D 1
+typedef double v4d __attribute__((vector_size(32), aligned(8), may_alias));
+#endif
+
 #endif
