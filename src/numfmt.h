@@ -1,6 +1,6 @@
 /* Exact and fast text for doubles: the shortest decimal form that reads back
  * (strtod, awk, gnuplot, Python) as the same double, from the Dragonbox
- * algorithm (the fmt library's, src/numfmt.cc), about 50x faster than
+ * algorithm (the fmt library's, src/numfmt.cc), about 15x faster than
  * printf("%.17g"), which prints 17 digits through multi-precision arithmetic,
  * and never longer; and the correctly rounded reading of a decimal by
  * std::from_chars (Eisel-Lemire in libstdc++), several times faster than strtod. */
