@@ -131,6 +131,15 @@ static void check(double v)
     }
 }
 
+/* a double of random bits: every exponent, subnormals, infinities and NaNs */
+static double random_bits(gsl_rng *rng)
+{
+    uint64_t bits = ((uint64_t)gsl_rng_get(rng) << 32) ^ (uint64_t)gsl_rng_get(rng);
+    double v;
+    memcpy(&v, &bits, sizeof v);
+    return v;
+}
+
 static void test_special(void **state)
 {
     (void)state;
@@ -182,12 +191,8 @@ static void test_against_reference(void **state)
     (void)state;
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     gsl_rng_set(rng, 2024);
-    for (int k = 0; k < 2000000; k++) {
-        uint64_t bits = ((uint64_t)gsl_rng_get(rng) << 32) ^ (uint64_t)gsl_rng_get(rng);
-        double v;
-        memcpy(&v, &bits, sizeof v);
-        same_as_reference(v);
-    }
+    for (int k = 0; k < 2000000; k++)
+        same_as_reference(random_bits(rng));
     char text[64];
     for (int k = 0; k < 500000; k++) {
         /* n significant digits: values whose shortest form has exactly those */
@@ -205,9 +210,7 @@ static void test_random(void **state)
     (void)state;
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     for (int k = 0; k < 200000; k++) {
-        uint64_t bits = ((uint64_t)gsl_rng_get(rng) << 32) ^ (uint64_t)gsl_rng_get(rng);
-        double v;
-        memcpy(&v, &bits, sizeof v);
+        double v = random_bits(rng);
         if (isnan(v))
             continue;
         check(v);
@@ -224,9 +227,7 @@ static void test_against_ryu(void **state)
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     gsl_rng_set(rng, 14);
     for (int k = 0; k < 1500000; k++) {
-        uint64_t bits = ((uint64_t)gsl_rng_get(rng) << 32) ^ (uint64_t)gsl_rng_get(rng);
-        double v;
-        memcpy(&v, &bits, sizeof v);
+        double v = random_bits(rng);
         if (!isnan(v))
             same_as_both(v);
         same_as_both((gsl_rng_uniform(rng) - 0.5) *
