@@ -219,8 +219,9 @@ static inline double shell_cell(const shell_consts *sc, int a_in, int b_in, doub
 enum { SEG_MAXNODE = 64 };
 
 /* vrow[c] = sum_k f[k] ex[k n + c] for the cells c of [c0, c1) (c1 - c0 a multiple of 4) */
-static inline void node_sums(const double *ex, size_t n, const double *f, int nq, int c0,
-                             int c1, double *vrow)
+static inline __attribute__((always_inline)) void node_sums_n(const double *ex, size_t n,
+                                                              const double *f, int nq, int c0,
+                                                              int c1, double *vrow)
 {
     for (int c = c0; c < c1; c += 4) {
 #if defined(MIMAS_HAVE_V4D)
@@ -236,6 +237,25 @@ static inline void node_sums(const double *ex, size_t n, const double *f, int nq
             vrow[c + u] = acc;
         }
 #endif
+    }
+}
+
+/* The same with the usual node counts known to the compiler (its loop unrolled). */
+static inline void node_sums(const double *ex, size_t n, const double *f, int nq, int c0,
+                             int c1, double *vrow)
+{
+    switch (nq) {
+    case 8:
+        node_sums_n(ex, n, f, 8, c0, c1, vrow);
+        break;
+    case 10:
+        node_sums_n(ex, n, f, 10, c0, c1, vrow);
+        break;
+    case 12:
+        node_sums_n(ex, n, f, 12, c0, c1, vrow);
+        break;
+    default:
+        node_sums_n(ex, n, f, nq, c0, c1, vrow);
     }
 }
 

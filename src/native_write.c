@@ -32,7 +32,8 @@
 #include "parameters_h5.h"
 
 #define PARTICLE_CHUNK_MAX 32768   /* rows of a per-particle chunk */
-#define ROW_CHUNK 32768            /* rows of a per-contact chunk */
+#define ROW_CHUNK 32768            /* most rows of a per-contact chunk */
+#define ROW_CHUNK_MIN 1024         /* least rows of a per-contact chunk */
 #define FRAME_CHUNK 1024           /* rows of a per-frame chunk */
 
 /* A flat (CSR) table of contacts or wall contacts over all frames. */
@@ -98,14 +99,21 @@ struct mimas_writer {
     size_t committed;
     double staged_bytes;   /* data of the frames staged since the last commit */
     double last_commit;    /* monotonic seconds */
+    double opened;         /* monotonic seconds when the file was opened */
 };
 
-/* A commit (flush) rewrites the metadata of every dataset, at the end of
- * the file: it is worth it once the frames since the last one hold about as
- * much data, or once COMMIT_SECONDS have passed.  A crash loses at most the
- * frames of the last COMMIT_SECONDS. */
-#define COMMIT_SECONDS 1.0
+/* A commit (flush) rewrites the metadata of every dataset, at the end of the file, and
+ * the old copies stay behind (space is never reused): it is worth it once the frames
+ * since the last one hold COMMIT_DATA_PER_METADATA times as much data (what commits
+ * leave behind is then at most a quarter of the data), or once the commit interval
+ * has passed: 1 s at first, growing with the time the file has been open (a twentieth
+ * of it, at most COMMIT_SECONDS_MAX), so that a slow simulation of an hour commits
+ * every 30 s instead of every second.  A crash loses at most the frames of the last
+ * interval: the last 5 % of the run, at most 30 s. */
+#define COMMIT_SECONDS_MIN 1.0
+#define COMMIT_SECONDS_MAX 30.0
 #define COMMIT_BYTES_PER_DATASET 4096.0
+#define COMMIT_DATA_PER_METADATA 4.0
 
 static double seconds_now(void)
 {
@@ -201,6 +209,7 @@ int mimas_writer_open(mimas_writer **out, const char *path, const mimas_writer_o
     if (!w)
         return mimas_error_set(err, MIMAS_EIO, "%s: out of memory for the writer", path);
     w->tmp_slot = -1;
+    w->opened = seconds_now();
     if (o)
         w->opt = *o;
     else
@@ -420,6 +429,18 @@ static int create_gas(mimas_writer *w, const mimas_gas *gs, mimas_error *err)
     return MIMAS_OK;
 }
 
+/* Rows per chunk of a flat table whose first frame has n rows.  A commit rewrites the
+ * table's last, partly filled chunk (compressed, so elsewhere in the file), and space is
+ * never reused (see the top): each commit leaves about half a chunk behind.  An eighth
+ * of a frame's rows per chunk keeps that near 6 % of the data for one commit per frame
+ * (a slow simulation), against several times the data with chunks much larger than a
+ * frame; ROW_CHUNK_MIN keeps chunks of small frames worth compressing. */
+static hsize_t flat_chunk_rows(size_t n)
+{
+    size_t rows = n / 8;
+    return rows < ROW_CHUNK_MIN ? ROW_CHUNK_MIN : (rows > ROW_CHUNK ? ROW_CHUNK : rows);
+}
+
 static int create_flat(mimas_writer *w, flat_table *t, const void *tab, mimas_error *err)
 {
     hid_t g = make_group(w->file, t->group);
@@ -455,10 +476,11 @@ static int create_flat(mimas_writer *w, flat_table *t, const void *tab, mimas_er
         return mimas_error_set(err, MIMAS_EIO, "out of memory for the native writer");
     }
     t->ncols = native_cols_of(tab, t->desc, t->cols);
+    hsize_t rows = flat_chunk_rows(*(const size_t *)((const char *)tab + t->desc->off_n));
     for (size_t c = 0; c < t->ncols; c++) {
         native_col *nc = &t->cols[c];
         int rank = nc->ncomp == 1 ? 1 : 2;
-        hsize_t dims[2] = {0, (hsize_t)nc->ncomp}, chunk[2] = {ROW_CHUNK, (hsize_t)nc->ncomp};
+        hsize_t dims[2] = {0, (hsize_t)nc->ncomp}, chunk[2] = {rows, (hsize_t)nc->ncomp};
         nc->ds = h5_create_growing(g, nc->name, native_file_type(nc->type), rank, 1, dims,
                                    chunk, NULL, w->opt.deflate);
         if (nc->ds < 0) {
@@ -926,8 +948,13 @@ int mimas_writer_append(mimas_writer *w, const mimas_frame *f, mimas_error *err)
         return rc;
     double datasets = (double)(w->npcols + 6 + (w->has_contacts ? w->contacts.ncols + 3 : 0) +
                                (w->has_walls ? w->walls.ncols + 3 : 0));
-    if (w->committed == 0 || w->staged_bytes >= COMMIT_BYTES_PER_DATASET * datasets ||
-        seconds_now() - w->last_commit >= COMMIT_SECONDS)
+    double now = seconds_now(), interval = (now - w->opened) / 20.0;
+    interval = interval < COMMIT_SECONDS_MIN
+                   ? COMMIT_SECONDS_MIN
+                   : (interval > COMMIT_SECONDS_MAX ? COMMIT_SECONDS_MAX : interval);
+    if (w->committed == 0 ||
+        w->staged_bytes >= COMMIT_DATA_PER_METADATA * COMMIT_BYTES_PER_DATASET * datasets ||
+        now - w->last_commit >= interval)
         rc = mimas_writer_commit(w, err);
     return rc;
 }

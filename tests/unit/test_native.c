@@ -38,13 +38,22 @@ static void make_frame(mimas_frame *f, unsigned long seed, size_t k, int triclin
     gsl_rng_free(rng);
 }
 
-static void write_frames(const char *path, unsigned long seed, size_t nframes, int triclinic)
+/* A writer on path with the default options. */
+static mimas_writer *open_writer(const char *path)
 {
     mimas_writer *w;
     mimas_error err;
     mimas_writer_options o;
     mimas_writer_options_default(&o);
-    assert_int_equal(mimas_writer_open(&w, path, &o, &err), MIMAS_OK);
+    if (mimas_writer_open(&w, path, &o, &err))
+        fail_msg("open %s: %s", path, err.msg);
+    return w;
+}
+
+static void write_frames(const char *path, unsigned long seed, size_t nframes, int triclinic)
+{
+    mimas_writer *w = open_writer(path);
+    mimas_error err;
     mimas_frame f;
     mimas_frame_init(&f);
     for (size_t k = 0; k < nframes; k++) {
@@ -391,6 +400,59 @@ static void test_tube_gas_round_trip(void **state)
 
 /* A file of format 1.0 (tests/data/native/v1_0.h5, written by mimas 0.1.0
  * before the tube and gas fields existed) reads, without tube or gas. */
+/* The file holds its data and little else when every frame is committed on its own
+ * (as a slow simulation does): the contact tables' partly filled last chunk is
+ * rewritten at every commit and, space never being reused, each rewrite stays behind
+ * in the file; chunks sized to the frames keep that below a fraction of the data.
+ * Expected: the file's size against the storage of its datasets (H5Dget_storage_size)
+ * and a bound on the metadata of the commits. */
+static herr_t add_storage(hid_t obj, const char *name, const H5O_info_t *info, void *sum)
+{
+    if (info->type != H5O_TYPE_DATASET)
+        return 0;
+    hid_t ds = H5Dopen2(obj, name, H5P_DEFAULT);
+    if (ds < 0)
+        return -1;
+    *(hsize_t *)sum += H5Dget_storage_size(ds);
+    H5Dclose(ds);
+    return 0;
+}
+
+static void test_commits_leave_little_unused_space(void **state)
+{
+    (void)state;
+    const char *path = scratch_path("commits.h5");
+    mimas_writer *w = open_writer(path);
+    mimas_error err;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    enum { FRAMES = 120 };
+    for (size_t k = 0; k < FRAMES; k++) {
+        random_frame_spec s = {2000, 6000, 0, 0, 0, 1, 0};
+        assert_int_equal(random_frame(&f, rng, &s, (int64_t)k), 0);
+        assert_int_equal(mimas_writer_append(w, &f, &err), MIMAS_OK);
+        assert_int_equal(mimas_writer_flush(w, &err), MIMAS_OK);
+    }
+    gsl_rng_free(rng);
+    mimas_frame_free(&f);
+    assert_int_equal(mimas_writer_close(w, &err), MIMAS_OK);
+    hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(file >= 0);
+    hsize_t data = 0;
+    assert_true(H5Ovisit2(file, H5_INDEX_NAME, H5_ITER_NATIVE, add_storage, &data,
+                          H5O_INFO_BASIC) >= 0);
+    H5Fclose(file);
+    struct stat st;
+    assert_int_equal(stat(path, &st), 0);
+    /* the metadata of a commit: a few kB (chunk index, extents); allow 16 kB each */
+    double size = (double)st.st_size, allowed = 1.25 * (double)data + 16384.0 * FRAMES;
+    if (size > allowed)
+        fail_msg("file of %.0f bytes for %.0f bytes of data (allowed %.0f)", size, (double)data,
+                 allowed);
+    unlink(path);
+}
+
 static void test_format_1_0_reads(void **state)
 {
     (void)state;
@@ -427,6 +489,7 @@ int main(void)
         cmocka_unit_test(test_unknown_contact_id_is_reported),
         cmocka_unit_test(test_tube_gas_round_trip),
         cmocka_unit_test(test_format_1_0_reads),
+        cmocka_unit_test(test_commits_leave_little_unused_space),
     };
     return cmocka_run_group_tests_name("native", tests, scratch_setup, scratch_teardown);
 }
