@@ -10,9 +10,33 @@
 
 #include "numfmt.h"
 
+// fmt header-only and hidden: its functions are compiled here and not exported from
+// libmimas, where they could stand in for those of a program's own libfmt (the standard
+// headers it uses come first, with their usual visibility)
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdarg>
+#include <cstddef>
+#include <cstdio>
+#include <cwchar>
+#include <exception>
+#include <iterator>
+#include <limits>
+#include <locale>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <type_traits>
 #define FMT_HEADER_ONLY
 #define FMT_USE_FULL_CACHE_DRAGONBOX 1
+#pragma GCC visibility push(hidden)
 #include <fmt/format.h>
+#pragma GCC visibility pop
 
 #ifdef __SSE2__
 #include <emmintrin.h>
@@ -120,7 +144,12 @@ inline void copy24(char *to, const char *from)
 // is "1e+17").  The longest text is 24 characters ("-1.2345678901234567e-308",
 // "-0.00012345678901234567"); the fixed-size copies below reach at most byte 42 of buf's
 // MIMAS_NUMFMT_MAX and byte 41 of d.
-extern "C" size_t mimas_format_double(double v, char *buf)
+#if defined(__GNUC__)
+#define MIMAS_FLATTEN __attribute__((flatten)) // Dragonbox inlined: 10 instructions fewer
+#else
+#define MIMAS_FLATTEN
+#endif
+extern "C" MIMAS_FLATTEN size_t mimas_format_double(double v, char *buf)
 {
     uint64_t bits;
     std::memcpy(&bits, &v, sizeof bits);
