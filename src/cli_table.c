@@ -140,6 +140,32 @@ void cli_table_double(cli_table *t, double v)
     t->len += (size_t)(o - start);
 }
 
+void cli_table_doubles(cli_table *t, const double *v, size_t n)
+{
+    if (t->o.digits) {
+        for (size_t k = 0; k < n; k++)
+            cli_table_double(t, v[k]);
+        return;
+    }
+    /* as cli_table_double, the table's length and column in locals (the text written
+     * through a char pointer would otherwise make the compiler reload them) */
+    char sep = t->o.csv ? ',' : '\t';
+    size_t len = t->len, col = t->col;
+    for (size_t k = 0; k < n; k++) {
+        if (len + MIMAS_NUMFMT_MAX + 1 > sizeof t->buf) {
+            t->len = len;
+            flush(t);
+            len = 0;
+        }
+        char *o = t->buf + len;
+        if (col++)
+            *o++ = sep;
+        len = (size_t)(o - t->buf) + mimas_format_double(v[k], o);
+    }
+    t->len = len;
+    t->col = col;
+}
+
 void cli_table_int(cli_table *t, long long v)
 {
     char *o = room(t, 24), *start = o;

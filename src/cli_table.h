@@ -58,6 +58,8 @@ void cli_table_columns(cli_table *t, const char *const *names, const char *const
                        size_t n);
 /* Rows: values in column order, then cli_table_row_end.  NaN is "nan". */
 void cli_table_double(cli_table *t, double v);
+/* n numbers at once (a row's: as n cli_table_double calls, faster). */
+void cli_table_doubles(cli_table *t, const double *v, size_t n);
 void cli_table_int(cli_table *t, long long v);
 void cli_table_text(cli_table *t, const char *s);
 void cli_table_row_end(cli_table *t);
