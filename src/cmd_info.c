@@ -42,7 +42,7 @@ static void add_meta(summary *s, const mimas_frame_meta *m)
     widen(&s->nw, m->n_walls, first);
     if (first)
         s->first = *m;
-    else if (memcmp(&m->box, &s->first.box, sizeof m->box) != 0)
+    else if (!mimas_box_equal(&m->box, &s->first.box))
         s->box_changes = 1;
     s->last = *m;
     s->frames++;

@@ -24,18 +24,7 @@
 #include "sample_mean.h"
 
 static const cli_option options[] = {
-    {"axis", 0, "X0,Y0,Z0,DX,DY,DZ", "tube axis: a point at s = 0 and the direction of +s "
-                                     "(default: the input's tube, else the z axis)"},
-    {"tube-radius", 0, "R", "inner tube radius (m; default: the input's tube)"},
-    {"range", 0, "S0:S1", "axial range of the slices (m; default: the tube, else the particles "
-                          "of the first frame)"},
-    {"slice", 0, "W", "slice thickness (m; default: half the mean diameter)"},
-    {"diameter", 0, "D", "particle diameter d, the unit of the plug-centred profiles (default: "
-                         "the mean of the first frame)"},
-    {"temperature-components", 0, "LIST", "velocity components of the granular temperature: a "
-                                          "comma list of s, r, phi (default all)"},
-    {"threshold", 0, "P", "porosity below which a slice belongs to a plug (default 0.6)"},
-    {"min-length", 0, "L", "shortest plug (m; default one diameter)"},
+    CLI_TUBE_OPTIONS,
     {"max-shift", 0, "X", "tracking gate: largest distance of a plug's centre from its "
                           "predicted position (m; default half the smallest plug distance)"},
     {"profile-range", 0, "A:B", "plug-centred profiles over A..B diameters from the centre "
@@ -65,49 +54,32 @@ static const cli_option options[] = {
     {"from", 0, "T0", "first time to use (s)"},
     {"to", 0, "T1", "last time to use (s)"},
     {"every", 0, "K", "use every K-th frame of those selected"},
-    {"types", 0, "L", "use only particles of these types (comma list)"},
-    {"exclude-types", 0, "L", "drop particles of these types (e.g. glued wall particles; their "
-                              "contacts become wall contacts of the others)"},
     CLI_TABLE_OPTIONS,
 };
 
-enum { O_AXIS, O_RADIUS, O_RANGE, O_SLICE, O_DIAMETER, O_TEMP, O_THRESHOLD, O_MINLEN,
-       O_MAXSHIFT, O_PRANGE, O_PBIN, O_VWIN, O_LWIN, O_SWIN, O_FLOWAT, O_PLUGS, O_TRACKS,
-       O_EVENTS, O_PROFILES, O_STATS, O_SUMMARY, O_AXIAL, O_AXIAL_TSV, O_SPACETIME, O_OUTPUT,
-       O_FROM, O_TO, O_EVERY, O_TYPES, O_EXCLUDE, O_TABLE };
+enum { O_MAXSHIFT = CLI_TUBE_NOPTIONS, O_PRANGE, O_PBIN, O_VWIN, O_LWIN, O_SWIN, O_FLOWAT,
+       O_PLUGS, O_TRACKS, O_EVENTS, O_PROFILES, O_STATS, O_SUMMARY, O_AXIAL, O_AXIAL_TSV,
+       O_SPACETIME, O_OUTPUT, O_FROM, O_TO, O_EVERY, O_TABLE };
 
 typedef struct plugs_args {
     const cli_command *cmd;
-    const char *axis;
-    double radius, s0, s1, slice, diameter, threshold, min_length, max_shift;
+    cli_tube_args tube;
+    double max_shift;
     double p0, p1, pbin, v0, v1, l0, l1, stats_w, flow_at;
-    int has_range, has_flow_at;
+    int has_flow_at;
     int plugs_off;             /* another table takes standard output */
-    unsigned temperature;
     const char *plugs, *tracks, *events, *profiles, *stats, *summary, *axial, *axial_tsv,
         *spacetime, *output;
     cli_window window;
-    cli_types types;
     cli_table_options table;
 } plugs_args;
 
 static int on_option(void *ctx, size_t opt, const char *arg)
 {
     plugs_args *a = ctx;
+    if (opt < CLI_TUBE_NOPTIONS)
+        return cli_tube_option(a->cmd, &a->tube, (int)opt, arg);
     switch (opt) {
-    case O_AXIS: a->axis = arg; return 0;
-    case O_RADIUS: return cli_positive_option(a->cmd, "tube-radius", arg, &a->radius);
-    case O_RANGE:
-        a->has_range = 1;
-        return cli_pair_option(a->cmd, "range", "S0:S1", arg, &a->s0, &a->s1);
-    case O_SLICE: return cli_positive_option(a->cmd, "slice", arg, &a->slice);
-    case O_DIAMETER: return cli_positive_option(a->cmd, "diameter", arg, &a->diameter);
-    case O_TEMP: return cli_parse_temperature(a->cmd, arg, &a->temperature);
-    case O_THRESHOLD:
-        if (cli_parse_double(arg, &a->threshold) || !(a->threshold > 0) || !(a->threshold <= 1))
-            return cli_fail(a->cmd, 1, "--threshold needs a porosity in (0, 1], not '%s'", arg);
-        return 0;
-    case O_MINLEN: return cli_positive_option(a->cmd, "min-length", arg, &a->min_length);
     case O_MAXSHIFT: return cli_positive_option(a->cmd, "max-shift", arg, &a->max_shift);
     case O_PRANGE: return cli_pair_option(a->cmd, "profile-range", "A:B", arg, &a->p0, &a->p1);
     case O_PBIN: return cli_positive_option(a->cmd, "profile-bin", arg, &a->pbin);
@@ -132,8 +104,6 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_FROM:
     case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
     case O_EVERY: return cli_window_every(a->cmd, &a->window, arg);
-    case O_TYPES:
-    case O_EXCLUDE: return cli_types_option(a->cmd, &a->types, opt == O_EXCLUDE, arg);
     default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
 }
@@ -230,25 +200,12 @@ static int setup(void *ctx, const void *data, mimas_error *err)
     const mimas_tube_setup *ts = data;
     plugs_args *a = u->a;
     mimas_axial_options *o = &u->ao;
-    memset(o, 0, sizeof *o);
-    o->geom = ts->geom;
-    double smin = ts->s_min, smax = ts->s_max, d = ts->diameter;
-    int rc;
-    if (a->diameter > 0)
-        d = a->diameter;
-    double s0 = a->has_range ? a->s0 : isfinite(o->geom.length) ? 0.0 : smin;
-    double s1 = a->has_range ? a->s1 : isfinite(o->geom.length) ? o->geom.length : smax;
-    if ((rc = mimas_tube_defaults_known(d, s0, s1, err)) ||
-        (rc = mimas_slices_set(&o->slices, s0, s1, a->slice > 0 ? a->slice : 0.5 * d, err)))
+    double d, s0, s1;
+    int rc = cli_tube_plug_setup(&a->tube, ts, o, &u->po, &d, &s0, &s1, err);
+    if (rc)
         return rc;
-    o->temperature = a->temperature;
-    o->types = a->types.types;
-    o->ntypes = a->types.n;
-    o->exclude = a->types.exclude;
-    o->check_inside = 1;
-    o->flow_at = a->has_flow_at ? a->flow_at : 0.5 * (s0 + s1);
-    u->po.threshold = a->threshold;
-    u->po.min_length = a->min_length > 0 ? a->min_length : d;
+    if (a->has_flow_at)
+        o->flow_at = a->flow_at;
     mimas_tracking_options *t = &u->to;
     t->max_shift = a->max_shift > 0 ? a->max_shift : NAN;
     t->bins.d = d;
@@ -271,9 +228,6 @@ static int setup(void *ctx, const void *data, mimas_error *err)
     t->stats_n = ns < 1 ? 1 : (size_t)ns;
     t->stats_w = (s1 - s0) / (double)t->stats_n;
     int root = mimas_par_rank() == 0;
-    if (root && !u->in->quiet && (!a->has_range || !(a->slice > 0) || !(a->diameter > 0)))
-        fprintf(stderr, "mimas plugs: tube radius %g m, %zu slices of %g m over %g:%g m, "
-                        "d = %g m\n", o->geom.radius, o->slices.n, o->slices.w, s0, s1, d);
     if ((rc = mimas_axial_create(&u->ax, o, err)) ||
         (rc = mimas_tracker_create(&u->tr, t, err)))
         return rc;
@@ -299,6 +253,10 @@ static int setup(void *ctx, const void *data, mimas_error *err)
             return rc;
         u->axial_on = 1;
     }
+    /* the defaults taken, once everything is set up (an error is then its one line) */
+    if (!u->in->quiet && (!a->tube.has_range || !(a->tube.slice > 0) || !(a->tube.diameter > 0)))
+        fprintf(stderr, "mimas plugs: tube radius %g m, %zu slices of %g m over %g:%g m, "
+                        "d = %g m\n", o->geom.radius, o->slices.n, o->slices.w, s0, s1, d);
     return MIMAS_OK;
 }
 
@@ -721,7 +679,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     plugs_args a;
     memset(&a, 0, sizeof a);
     a.cmd = cmd;
-    a.threshold = 0.6;
+    cli_tube_args_init(&a.tube);
     a.p0 = -20;
     a.p1 = 20;
     a.pbin = 0.5;
@@ -791,10 +749,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
     cli_progress_start(&prog, &in);
     cli_frames frames;
     cli_frames_init(&frames, r, &a.window, argv[first]);
-    cli_tube_pick pick = {a.axis, a.radius, &a.types};
     mimas_tube_setup ts;
     memset(&ts, 0, sizeof ts);
-    cli_frame_work work = {&u, cli_tube_decide, &pick, &ts, sizeof ts, setup, one_frame,
+    cli_frame_work work = {&u, cli_tube_decide, &a.tube, &ts, sizeof ts, setup, one_frame,
                            use_frame};
     if (!status)
         status = cli_frames_run(&frames, &work, cmd, &prog, &err);

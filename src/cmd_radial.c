@@ -21,9 +21,7 @@
 #include "reader.h"
 
 static const cli_option options[] = {
-    {"axis", 0, "X0,Y0,Z0,DX,DY,DZ", "tube axis: a point at s = 0 and the direction of +s "
-                                     "(default: the input's tube, else the z axis)"},
-    {"tube-radius", 0, "R", "inner tube radius (m; default: the input's tube)"},
+    CLI_TUBE_OPTIONS,
     {"probe", 0, "D", "probe sphere diameter (m; default a quarter of the mean diameter)"},
     {"planes", 0, "N", "probe planes in a group (default 4)"},
     {"plane-spread", 0, "X", "axial distance from the first to the last plane of a group (m; "
@@ -33,44 +31,33 @@ static const cli_option options[] = {
                        "(default: the tube, else the particles of the first frame)"},
     {"in-plugs", 0, NULL, "one group of planes at each plug's centre (plugs as in mimas plugs; "
                           "cut plugs are left out): radial plug profiles"},
-    {"diameter", 0, "D", "particle diameter d (default: the mean of the first frame)"},
-    {"temperature-components", 0, "LIST", "velocity components of the granular temperature: a "
-                                          "comma list of s, r, phi (default all)"},
-    {"slice", 0, "W", "--in-plugs: slice thickness (m; default half the diameter)"},
-    {"range", 0, "S0:S1", "--in-plugs: axial range of the slices (as in mimas plugs)"},
-    {"threshold", 0, "P", "--in-plugs: plug porosity threshold (default 0.6)"},
-    {"min-length", 0, "L", "--in-plugs: shortest plug (m; default one diameter)"},
     {"output", 'o', "FILE", "write the table to FILE (default: standard output)"},
     {"from", 0, "T0", "first time to use (s)"},
     {"to", 0, "T1", "last time to use (s)"},
     {"every", 0, "K", "use every K-th frame of those selected"},
-    {"types", 0, "L", "use only particles of these types (comma list)"},
-    {"exclude-types", 0, "L", "drop particles of these types"},
     CLI_TABLE_OPTIONS,
 };
 
-enum { O_AXIS, O_RADIUS, O_PROBE, O_PLANES, O_SPREAD, O_DR, O_AT, O_INPLUGS, O_DIAMETER, O_TEMP,
-       O_SLICE, O_RANGE, O_THRESHOLD, O_MINLEN, O_OUTPUT, O_FROM, O_TO, O_EVERY, O_TYPES,
-       O_EXCLUDE, O_TABLE };
+enum { O_PROBE = CLI_TUBE_NOPTIONS, O_PLANES, O_SPREAD, O_DR, O_AT, O_INPLUGS, O_OUTPUT,
+       O_FROM, O_TO, O_EVERY, O_TABLE };
 
 typedef struct radial_args {
     const cli_command *cmd;
-    const char *axis, *output;
-    double radius, probe, spread, dr, at0, at1, diameter, slice, s0, s1, threshold, min_length;
+    const char *output;
+    cli_tube_args tube;
+    double probe, spread, dr, at0, at1;
     long planes;
-    int has_at, in_plugs, has_range;
-    unsigned temperature;
+    int has_at, in_plugs;
     cli_window window;
-    cli_types types;
     cli_table_options table;
 } radial_args;
 
 static int on_option(void *ctx, size_t opt, const char *arg)
 {
     radial_args *a = ctx;
+    if (opt < CLI_TUBE_NOPTIONS)
+        return cli_tube_option(a->cmd, &a->tube, (int)opt, arg);
     switch (opt) {
-    case O_AXIS: a->axis = arg; return 0;
-    case O_RADIUS: return cli_positive_option(a->cmd, "tube-radius", arg, &a->radius);
     case O_PROBE: return cli_positive_option(a->cmd, "probe", arg, &a->probe);
     case O_PLANES:
         if (cli_parse_long(arg, &a->planes) || a->planes < 1 || a->planes > 1000)
@@ -80,23 +67,10 @@ static int on_option(void *ctx, size_t opt, const char *arg)
     case O_DR: return cli_positive_option(a->cmd, "dr", arg, &a->dr);
     case O_AT: a->has_at = 1; return cli_pair_option(a->cmd, "at", "S0:S1", arg, &a->at0, &a->at1);
     case O_INPLUGS: a->in_plugs = 1; return 0;
-    case O_DIAMETER: return cli_positive_option(a->cmd, "diameter", arg, &a->diameter);
-    case O_TEMP: return cli_parse_temperature(a->cmd, arg, &a->temperature);
-    case O_SLICE: return cli_positive_option(a->cmd, "slice", arg, &a->slice);
-    case O_RANGE:
-        a->has_range = 1;
-        return cli_pair_option(a->cmd, "range", "S0:S1", arg, &a->s0, &a->s1);
-    case O_THRESHOLD:
-        if (cli_parse_double(arg, &a->threshold) || !(a->threshold > 0) || !(a->threshold <= 1))
-            return cli_fail(a->cmd, 1, "--threshold needs a porosity in (0, 1], not '%s'", arg);
-        return 0;
-    case O_MINLEN: return cli_positive_option(a->cmd, "min-length", arg, &a->min_length);
     case O_OUTPUT: a->output = arg; return 0;
     case O_FROM:
     case O_TO: return cli_window_time(a->cmd, &a->window, opt == O_FROM, arg);
     case O_EVERY: return cli_window_every(a->cmd, &a->window, arg);
-    case O_TYPES:
-    case O_EXCLUDE: return cli_types_option(a->cmd, &a->types, opt == O_EXCLUDE, arg);
     default: return cli_table_option(a->cmd, &a->table, opt - O_TABLE, arg);
     }
 }
@@ -121,22 +95,26 @@ static int setup(void *ctx, const void *data, mimas_error *err)
     mimas_radial_options o;
     memset(&o, 0, sizeof o);
     o.geom = ts->geom;
-    double smin = ts->s_min, smax = ts->s_max, d = ts->diameter;
-    int rc;
-    if (a->diameter > 0)
-        d = a->diameter;
-    int known = isfinite(o.geom.length);
-    double lo = known ? 0.0 : smin, hi = known ? o.geom.length : smax;
-    int given = a->in_plugs ? a->has_range : a->has_at;
-    double g0 = a->in_plugs ? a->s0 : a->at0, g1 = a->in_plugs ? a->s1 : a->at1;
-    if ((rc = mimas_tube_defaults_known(d, given ? g0 : lo, given ? g1 : hi, err)))
-        return rc;
+    double d = a->tube.diameter > 0 ? a->tube.diameter : ts->diameter, s0, s1;
+    int rc, known = isfinite(o.geom.length);
+    if (a->in_plugs) {
+        /* plugs found as mimas plugs finds them, over --range */
+        mimas_axial_options ao;
+        if ((rc = cli_tube_plug_setup(&a->tube, ts, &ao, &u->po, &d, &s0, &s1, err)) ||
+            (rc = mimas_axial_create(&u->ax, &ao, err)))
+            return rc;
+    } else {
+        s0 = a->has_at ? a->at0 : known ? 0.0 : ts->s_min;
+        s1 = a->has_at ? a->at1 : known ? o.geom.length : ts->s_max;
+        if ((rc = mimas_tube_defaults_known(d, s0, s1, err)))
+            return rc;
+    }
     o.probe = a->probe > 0 ? a->probe : 0.25 * d;
     o.dr = a->dr > 0 ? a->dr : 0.5 * o.probe;
-    o.temperature = a->temperature;
-    o.types = a->types.types;
-    o.ntypes = a->types.n;
-    o.exclude = a->types.exclude;
+    o.temperature = a->tube.temperature;
+    o.types = a->tube.types.types;
+    o.ntypes = a->tube.types.n;
+    o.exclude = a->tube.types.exclude;
     o.check_inside = 1;
     if ((rc = mimas_radial_create(&u->rad, &o, err)))
         return rc;
@@ -144,22 +122,8 @@ static int setup(void *ctx, const void *data, mimas_error *err)
     size_t P = (size_t)a->planes;
     u->spacing = P > 1 ? spread / (double)(P - 1) : spread;
     if (a->in_plugs) {
-        mimas_axial_options ao;
-        memset(&ao, 0, sizeof ao);
-        ao.geom = o.geom;
-        ao.types = a->types.types;
-        ao.ntypes = a->types.n;
-        ao.exclude = a->types.exclude;
-        ao.flow_at = NAN;
-        double s0 = a->has_range ? a->s0 : lo, s1 = a->has_range ? a->s1 : hi;
-        if ((rc = mimas_slices_set(&ao.slices, s0, s1, a->slice > 0 ? a->slice : 0.5 * d, err)) ||
-            (rc = mimas_axial_create(&u->ax, &ao, err)))
-            return rc;
-        u->po.threshold = a->threshold;
-        u->po.min_length = a->min_length > 0 ? a->min_length : d;
         u->cap = P;
     } else {
-        double s0 = a->has_at ? a->at0 : lo, s1 = a->has_at ? a->at1 : hi;
         double n = floor((s1 - s0) / u->spacing + 1e-9) + 1;
         if (n > 1e6)
             return mimas_error_set(err, MIMAS_EUSAGE, "--at %g:%g: too many planes", s0, s1);
@@ -290,7 +254,7 @@ static int run(const cli_command *cmd, int argc, char **argv)
     memset(&a, 0, sizeof a);
     a.cmd = cmd;
     a.planes = 4;
-    a.threshold = 0.6;
+    cli_tube_args_init(&a.tube);
     cli_inputs in = {0};
     int first;
     int rc = cli_parse(cmd, argc, argv, on_option, &a, &in, &first);
@@ -317,10 +281,9 @@ static int run(const cli_command *cmd, int argc, char **argv)
      * (rank 0's), each frame's samples to rank 0 in frame order */
     cli_frames frames;
     cli_frames_init(&frames, r, &a.window, argv[first]);
-    cli_tube_pick pick = {a.axis, a.radius, &a.types};
     mimas_tube_setup ts;
     memset(&ts, 0, sizeof ts);
-    cli_frame_work work = {&u, cli_tube_decide, &pick, &ts, sizeof ts, setup, one_frame,
+    cli_frame_work work = {&u, cli_tube_decide, &a.tube, &ts, sizeof ts, setup, one_frame,
                            add_samples};
     int status = cli_frames_run(&frames, &work, cmd, &prog, &err);
     cli_progress_done(&prog);

@@ -379,6 +379,14 @@ int mimas_box_is_triclinic(const mimas_box *b)
     return b->xy != 0.0 || b->xz != 0.0 || b->yz != 0.0;
 }
 
+int mimas_box_equal(const mimas_box *a, const mimas_box *b)
+{
+    for (int d = 0; d < 3; d++)
+        if (a->lo[d] != b->lo[d] || a->hi[d] != b->hi[d] || a->periodic[d] != b->periodic[d])
+            return 0;
+    return a->xy == b->xy && a->xz == b->xz && a->yz == b->yz;
+}
+
 double mimas_box_volume(const mimas_box *b)
 {
     /* the tilt shears the box without changing its volume */

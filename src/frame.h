@@ -133,6 +133,9 @@ typedef struct mimas_box {
 } mimas_box;
 
 int mimas_box_is_triclinic(const mimas_box *b);
+/* 1 if the two boxes have the same bounds, tilts and periodicity (values compared, not
+ * bytes: -0 equals 0). */
+int mimas_box_equal(const mimas_box *a, const mimas_box *b);
 double mimas_box_volume(const mimas_box *b);
 /* Rows are the edge vectors a, b, c. */
 void mimas_box_edges(const mimas_box *b, double e[3][3]);

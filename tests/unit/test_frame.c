@@ -170,6 +170,37 @@ static void test_gas_grid(void **state)
     mimas_frame_free(&f);
 }
 
+/* Boxes compare by value: -0 equals 0, the bytes between the fields do not count, and
+ * each bound, tilt and periodic flag does. */
+static void test_box_equal(void **state)
+{
+    (void)state;
+    mimas_box a, b;
+    memset(&a, 0, sizeof a);
+    memset(&b, 0xff, sizeof b); /* other padding bytes */
+    mimas_box ref = {{0, 0, 0}, {1, 2, 3}, 0, 0, 0, {1, 0, 1}};
+    for (int d = 0; d < 3; d++) {
+        a.lo[d] = ref.lo[d];
+        a.hi[d] = ref.hi[d];
+        a.periodic[d] = ref.periodic[d];
+        b.lo[d] = d == 0 ? -0.0 : ref.lo[d];
+        b.hi[d] = ref.hi[d];
+        b.periodic[d] = ref.periodic[d];
+    }
+    a.xy = a.xz = a.yz = 0.0;
+    b.xy = -0.0;
+    b.xz = b.yz = 0.0;
+    assert_true(mimas_box_equal(&a, &b));
+    b.hi[2] = 3.0000000000000004;
+    assert_false(mimas_box_equal(&a, &b));
+    b.hi[2] = 3;
+    b.yz = 1e-300;
+    assert_false(mimas_box_equal(&a, &b));
+    b.yz = 0;
+    b.periodic[1] = 1;
+    assert_false(mimas_box_equal(&a, &b));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -180,6 +211,7 @@ int main(void)
         cmocka_unit_test(test_id_index_dense_and_sorted),
         cmocka_unit_test(test_box_geometry),
         cmocka_unit_test(test_gas_grid),
+        cmocka_unit_test(test_box_equal),
     };
     return cmocka_run_group_tests_name("frame", tests, NULL, NULL);
 }
