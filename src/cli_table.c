@@ -31,26 +31,59 @@ void cli_table_start(cli_table *t, FILE *fp, const cli_table_options *o)
         t->o = *o;
 }
 
+/* The gathered text to the stream. */
+static void flush(cli_table *t)
+{
+    if (t->len)
+        fwrite(t->buf, 1, t->len, t->fp);
+    t->len = 0;
+}
+
+/* Room for n more bytes in the buffer (n <= CLI_TABLE_BUFFER). */
+static char *room(cli_table *t, size_t n)
+{
+    if (t->len + n > sizeof t->buf)
+        flush(t);
+    return t->buf + t->len;
+}
+
+static void put(cli_table *t, const char *s, size_t n)
+{
+    if (n > sizeof t->buf / 2) { /* a long word: straight to the stream */
+        flush(t);
+        fwrite(s, 1, n, t->fp);
+        return;
+    }
+    memcpy(room(t, n), s, n);
+    t->len += n;
+}
+
+static void put_char(cli_table *t, char c)
+{
+    *room(t, 1) = c;
+    t->len++;
+}
+
 static void separator(cli_table *t)
 {
     if (t->col++)
-        fputc(t->o.csv ? ',' : '\t', t->fp);
+        put_char(t, t->o.csv ? ',' : '\t');
 }
 
 /* A word; in CSV quoted when it holds a comma, a quote or a line break. */
-static void word(FILE *fp, int csv, const char *s)
+static void word(cli_table *t, const char *s)
 {
-    if (!csv || !s[strcspn(s, ",\"\n\r")]) {
-        fputs(s, fp);
+    if (!t->o.csv || !s[strcspn(s, ",\"\n\r")]) {
+        put(t, s, strlen(s));
         return;
     }
-    fputc('"', fp);
+    put_char(t, '"');
     for (; *s; s++) {
         if (*s == '"')
-            fputc('"', fp);
-        fputc(*s, fp);
+            put_char(t, '"');
+        put_char(t, *s);
     }
-    fputc('"', fp);
+    put_char(t, '"');
 }
 
 static void units_add(cli_table *t, const char *unit)
@@ -71,7 +104,7 @@ static void units_add(cli_table *t, const char *unit)
 void cli_table_column(cli_table *t, const char *name, const char *unit)
 {
     separator(t);
-    word(t->fp, t->o.csv, name);
+    word(t, name);
     if (t->o.units)
         units_add(t, unit && unit[0] ? unit : "-");
 }
@@ -85,7 +118,8 @@ void cli_table_columns(cli_table *t, const char *const *names, const char *const
 
 void cli_table_header_end(cli_table *t)
 {
-    fputc('\n', t->fp);
+    put_char(t, '\n');
+    flush(t);
     if (t->o.units && t->units)
         fprintf(t->fp, "%s\n", t->units);
     t->col = 0;
@@ -93,52 +127,78 @@ void cli_table_header_end(cli_table *t)
 
 void cli_table_double(cli_table *t, double v)
 {
-    if (t->o.digits && !isnan(v)) {
-        separator(t);
-        fprintf(t->fp, "%.*g", t->o.digits, v);
+    /* the separator and the shortest decimal that reads back as v (0.025, not
+     * 0.025000000000000001; "nan" for NaN) straight into the row: exact, and much faster
+     * than printf's 15-17 digits */
+    char *o = room(t, MIMAS_NUMFMT_MAX + 1), *start = o;
+    if (t->col++)
+        *o++ = t->o.csv ? ',' : '\t';
+    if (t->o.digits && !isnan(v))
+        o += snprintf(o, MIMAS_NUMFMT_MAX, "%.*g", t->o.digits, v);
+    else
+        o += mimas_format_double(v, o);
+    t->len += (size_t)(o - start);
+}
+
+void cli_table_doubles(cli_table *t, const double *v, size_t n)
+{
+    if (t->o.digits) {
+        for (size_t k = 0; k < n; k++)
+            cli_table_double(t, v[k]);
         return;
     }
-    /* the separator and the shortest decimal that reads back as v (0.025, not
-     * 0.025000000000000001; "nan" for NaN) in one write: exact, and several times faster
-     * than printf's 15-17 digits */
-    char buf[MIMAS_NUMFMT_MAX + 1];
-    size_t n = 0;
-    if (t->col++)
-        buf[n++] = t->o.csv ? ',' : '\t';
-    n += mimas_format_double(v, buf + n);
-#ifdef __GLIBC__
-    fwrite_unlocked(buf, 1, n, t->fp); /* one thread writes a table */
-#else
-    fwrite(buf, 1, n, t->fp);
-#endif
+    /* as cli_table_double, the table's length and column in locals (the text written
+     * through a char pointer would otherwise make the compiler reload them) */
+    char sep = t->o.csv ? ',' : '\t';
+    size_t len = t->len, col = t->col;
+    for (size_t k = 0; k < n; k++) {
+        if (len + MIMAS_NUMFMT_MAX + 1 > sizeof t->buf) {
+            t->len = len;
+            flush(t);
+            len = 0;
+        }
+        char *o = t->buf + len;
+        if (col++)
+            *o++ = sep;
+        len = (size_t)(o - t->buf) + mimas_format_double(v[k], o);
+    }
+    t->len = len;
+    t->col = col;
 }
 
 void cli_table_int(cli_table *t, long long v)
 {
-    separator(t);
-    fprintf(t->fp, "%lld", v);
+    char *o = room(t, 24), *start = o;
+    if (t->col++)
+        *o++ = t->o.csv ? ',' : '\t';
+    o += snprintf(o, 22, "%lld", v);
+    t->len += (size_t)(o - start);
 }
 
 void cli_table_text(cli_table *t, const char *s)
 {
     separator(t);
-    word(t->fp, t->o.csv, s);
+    word(t, s);
 }
 
 void cli_table_row_end(cli_table *t)
 {
-    fputc('\n', t->fp);
+    put_char(t, '\n');
+    flush(t);
     t->col = 0;
 }
 
 void cli_table_block_end(cli_table *t, int end_of_set)
 {
     if (t->o.blocks)
-        fputs(end_of_set ? "\n\n" : "\n", t->fp);
+        put(t, end_of_set ? "\n\n" : "\n", end_of_set ? 2 : 1);
+    flush(t);
 }
 
 int cli_table_end(cli_table *t)
 {
+    if (t->fp)
+        flush(t);
     free(t->units);
     t->units = NULL;
     return t->fp && ferror(t->fp) ? -1 : 0;

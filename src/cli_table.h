@@ -35,12 +35,18 @@ typedef struct cli_table_options {
  * usage error and returns 1 on a bad argument. */
 int cli_table_option(const cli_command *cmd, cli_table_options *o, size_t k, const char *arg);
 
+/* The text of a row is gathered in the table and handed to the stream in one
+ * write at the end of the row (and of the header, a block, the table), so
+ * between rows everything written is in fp. */
+#define CLI_TABLE_BUFFER 4096
 typedef struct cli_table {
     FILE *fp;
     cli_table_options o;
     size_t col;           /* columns written in the current row / header */
     char *units;          /* the units line being built */
     size_t units_len, units_cap;
+    size_t len;           /* bytes in buf not yet written to fp */
+    char buf[CLI_TABLE_BUFFER];
 } cli_table;
 
 void cli_table_start(cli_table *t, FILE *fp, const cli_table_options *o);
@@ -52,6 +58,8 @@ void cli_table_columns(cli_table *t, const char *const *names, const char *const
                        size_t n);
 /* Rows: values in column order, then cli_table_row_end.  NaN is "nan". */
 void cli_table_double(cli_table *t, double v);
+/* n numbers at once (a row's: as n cli_table_double calls, faster). */
+void cli_table_doubles(cli_table *t, const double *v, size_t n);
 void cli_table_int(cli_table *t, long long v);
 void cli_table_text(cli_table *t, const char *s);
 void cli_table_row_end(cli_table *t);

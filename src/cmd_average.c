@@ -167,28 +167,35 @@ static int write_rows(cli_table *t, const mimas_average *avg, int grid_none,
             if (fast < 0)
                 fast = d;
         }
-    double *mean = malloc(cells * nf * sizeof *mean), *sd = malloc(cells * nf * sizeof *sd),
-           *count = malloc(cells * nf * sizeof *count);
-    int rc = mean && sd && count ? mimas_average_fields(avg, mean, sd, count) : -1;
+    /* the spread only for --errors; a row's numbers gathered for one cli_table_doubles */
+    double *mean = malloc(cells * nf * sizeof *mean),
+           *sd = errors ? malloc(cells * nf * sizeof *sd) : NULL,
+           *count = errors ? malloc(cells * nf * sizeof *count) : NULL,
+           *row = malloc((4 + 2 * nf) * sizeof *row);
+    int rc = mean && row && (!errors || (sd && count))
+                 ? mimas_average_fields(avg, mean, sd, count) : -1;
     for (size_t cell = 0; !rc && cell < cells; cell++) {
         double ctr[3];
+        size_t nr = 0;
         if (!grid_none)
             mimas_grid_cell_centre(g, cell, ctr);
         if (frame) {
             cli_table_int(t, (long long)frame->step);
-            cli_table_double(t, frame->time);
+            row[nr++] = frame->time;
         }
         for (int d = 0; d < 3 && !grid_none; d++)
             if (g->gridded[d])
-                cli_table_double(t, ctr[d]);
-        const double *m = &mean[cell * nf], *s = &sd[cell * nf], *n = &count[cell * nf];
+                row[nr++] = ctr[d];
+        const double *m = &mean[cell * nf], *s = errors ? &sd[cell * nf] : NULL,
+                     *n = errors ? &count[cell * nf] : NULL;
         for (size_t k = 0; k < nf; k++) {
             if (!want[k])
                 continue;
-            cli_table_double(t, m[k]);
+            row[nr++] = m[k];
             if (errors)
-                cli_table_double(t, n[k] > 1 ? s[k] / sqrt(n[k]) : NAN);
+                row[nr++] = n[k] > 1 ? s[k] / sqrt(n[k]) : NAN;
         }
+        cli_table_doubles(t, row, nr);
         cli_table_row_end(t);
         int idx[3] = {0, 0, 0};
         if (!grid_none)
@@ -202,6 +209,7 @@ static int write_rows(cli_table *t, const mimas_average *avg, int grid_none,
     free(mean);
     free(sd);
     free(count);
+    free(row);
     return rc || ferror(t->fp) ? -1 : 0;
 }
 

@@ -1,6 +1,6 @@
 /* Exact and fast text for doubles: the shortest decimal form that reads back
- * (strtod, awk, gnuplot, Python) as the same double, from the C++ standard
- * library's std::to_chars (Ryu in libstdc++), about 7x faster than
+ * (strtod, awk, gnuplot, Python) as the same double, from the Dragonbox
+ * algorithm (the fmt library's, src/numfmt.cc), about 15x faster than
  * printf("%.17g"), which prints 17 digits through multi-precision arithmetic,
  * and never longer; and the correctly rounded reading of a decimal by
  * std::from_chars (Eisel-Lemire in libstdc++), several times faster than strtod. */
@@ -13,8 +13,9 @@
 extern "C" {
 #endif
 
-/* Room a formatted double needs, with its terminating NUL. */
-#define MIMAS_NUMFMT_MAX 32
+/* Room a formatted double needs: the text is at most 24 characters and its
+ * terminating NUL, the conversion uses the rest as scratch space. */
+#define MIMAS_NUMFMT_MAX 48
 
 /* Writes v into buf (MIMAS_NUMFMT_MAX bytes) and returns its length: "nan", "inf",
  * "-inf", plain decimals for 1e-4 <= |v| < 1e17 (as %g would), otherwise d.ddde+X /

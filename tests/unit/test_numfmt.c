@@ -1,7 +1,8 @@
 /* Shortest round-trip text for doubles: every value reads back (strtod) as the
  * same double, and no shorter printf("%.Ng") form does; the text is the same as
  * that of an independent implementation (double-conversion, numfmt_reference.cc),
- * which also picks the shortest form nearest to the value. */
+ * which also picks the shortest form nearest to the value, and its digits and
+ * exponent are those of a third (std::to_chars, Ryu). */
 #include <config.h>
 
 #include <setjmp.h>
@@ -20,6 +21,50 @@
 #include "numfmt.h"
 
 size_t reference_shortest(double v, char *buf, int size);
+int reference_ryu_digits(double v, char *digits, int *exponent);
+static void same_as_reference(double v);
+
+/* The significant digits (no leading or trailing zeros) and the decimal exponent of the
+ * first of them in a number as mimas writes it ("-0.00125" is "125" and -3). */
+static void text_digits(const char *s, char *digits, int *exponent)
+{
+    int n = 0, point = -1, lead = 0, e = 0;
+    if (*s == '-')
+        s++;
+    for (; *s && *s != 'e'; s++) {
+        if (*s == '.') {
+            point = n + lead;
+            continue;
+        }
+        if (n == 0 && *s == '0') {
+            lead++;
+            continue;
+        }
+        digits[n++] = *s;
+    }
+    if (*s == 'e')
+        e = atoi(s + 1);
+    int before = point < 0 ? n + lead : point; /* digits before the point */
+    *exponent = e + before - lead - 1;
+    while (n > 1 && digits[n - 1] == '0')
+        n--;
+    digits[n] = '\0';
+}
+
+/* the same digits and exponent as std::to_chars (Ryu), and the same text as double-conversion */
+static void same_as_both(double v)
+{
+    char buf[MIMAS_NUMFMT_MAX], ours[64], ryu[64];
+    int e_ours, e_ryu;
+    size_t n = mimas_format_double(v, buf);
+    assert_int_equal(n, strlen(buf));
+    text_digits(buf, ours, &e_ours);
+    reference_ryu_digits(v, ryu, &e_ryu);
+    if (strcmp(ours, ryu) != 0 || e_ours != e_ryu)
+        fail_msg("%.17g printed as '%s' (%s e%d), std::to_chars has %s e%d", v, buf, ours, e_ours,
+                 ryu, e_ryu);
+    same_as_reference(v);
+}
 
 /* the same text as the reference, and it reads back as v */
 static void same_as_reference(double v)
@@ -86,6 +131,15 @@ static void check(double v)
     }
 }
 
+/* a double of random bits: every exponent, subnormals, infinities and NaNs */
+static double random_bits(gsl_rng *rng)
+{
+    uint64_t bits = ((uint64_t)gsl_rng_get(rng) << 32) ^ (uint64_t)gsl_rng_get(rng);
+    double v;
+    memcpy(&v, &bits, sizeof v);
+    return v;
+}
+
 static void test_special(void **state)
 {
     (void)state;
@@ -137,12 +191,8 @@ static void test_against_reference(void **state)
     (void)state;
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     gsl_rng_set(rng, 2024);
-    for (int k = 0; k < 2000000; k++) {
-        uint64_t bits = ((uint64_t)gsl_rng_get(rng) << 32) ^ (uint64_t)gsl_rng_get(rng);
-        double v;
-        memcpy(&v, &bits, sizeof v);
-        same_as_reference(v);
-    }
+    for (int k = 0; k < 2000000; k++)
+        same_as_reference(random_bits(rng));
     char text[64];
     for (int k = 0; k < 500000; k++) {
         /* n significant digits: values whose shortest form has exactly those */
@@ -160,14 +210,42 @@ static void test_random(void **state)
     (void)state;
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     for (int k = 0; k < 200000; k++) {
-        uint64_t bits = ((uint64_t)gsl_rng_get(rng) << 32) ^ (uint64_t)gsl_rng_get(rng);
-        double v;
-        memcpy(&v, &bits, sizeof v);
+        double v = random_bits(rng);
         if (isnan(v))
             continue;
         check(v);
         check((gsl_rng_uniform(rng) - 0.3) * pow(10.0, (int)(gsl_rng_uniform_int(rng, 30)) - 15));
     }
+    gsl_rng_free(rng);
+}
+
+/* values like a field table's (every sign and decade, 1 to 17 digits), integers with
+ * trailing zeros up to 10^17, random bit patterns: against both references */
+static void test_against_ryu(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(rng, 14);
+    for (int k = 0; k < 1500000; k++) {
+        double v = random_bits(rng);
+        if (!isnan(v))
+            same_as_both(v);
+        same_as_both((gsl_rng_uniform(rng) - 0.5) *
+                     pow(10.0, (double)gsl_rng_uniform_int(rng, 40) - 20));
+        double i = floor(gsl_rng_uniform(rng) * pow(10.0, (double)gsl_rng_uniform_int(rng, 18)));
+        if (i > 0)
+            same_as_both(i * pow(10.0, (double)gsl_rng_uniform_int(rng, 18 - (int)log10(i) + 1)));
+    }
+    /* the layout's edges: 1 to 17 digits at 1e-5 .. 1e-4 and 1e16 .. 1e17 */
+    char text[64];
+    for (int digits = 1; digits <= 17; digits++)
+        for (int e = -6; e <= 18; e++)
+            for (int k = 0; k < 200; k++) {
+                snprintf(text, sizeof text, "%.*fe%d", digits - 1,
+                         1 + 9 * gsl_rng_uniform(rng), e);
+                same_as_both(strtod(text, NULL));
+                same_as_both(-strtod(text, NULL));
+            }
     gsl_rng_free(rng);
 }
 
@@ -177,6 +255,7 @@ int main(void)
         cmocka_unit_test(test_special),
         cmocka_unit_test(test_random),
         cmocka_unit_test(test_against_reference),
+        cmocka_unit_test(test_against_ryu),
     };
     return cmocka_run_group_tests_name("numfmt", tests, NULL, NULL);
 }
