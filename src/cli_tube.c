@@ -108,7 +108,7 @@ int cli_tube_plug_setup(const cli_tube_args *t, const mimas_tube_setup *ts,
     ao->ntypes = t->types.n;
     ao->exclude = t->types.exclude;
     ao->check_inside = 1;
-    ao->flow_at = 0.5 * (*s0 + *s1);
+    ao->flow_at = NAN; /* plug detection needs no flow rate */
     po->threshold = t->threshold;
     po->min_length = t->min_length > 0 ? t->min_length : *d;
     return MIMAS_OK;

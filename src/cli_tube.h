@@ -89,7 +89,7 @@ int cli_tube_decide(void *ctx, const mimas_frame *f, void *data, mimas_error *er
 
 /* Plug detection from the options and the first frame's set-up ts: the axial
  * profiles' options ao (geometry, slices over --range or the tube, particles,
- * temperature components) and the plug criterion po; *d the particle diameter in
+ * temperature components; no flow rate) and the plug criterion po; *d the particle diameter in
  * use, [*s0, *s1] the range. */
 int cli_tube_plug_setup(const cli_tube_args *t, const mimas_tube_setup *ts,
                         mimas_axial_options *ao, mimas_plug_options *po, double *d, double *s0,

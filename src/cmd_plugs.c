@@ -204,8 +204,7 @@ static int setup(void *ctx, const void *data, mimas_error *err)
     int rc = cli_tube_plug_setup(&a->tube, ts, o, &u->po, &d, &s0, &s1, err);
     if (rc)
         return rc;
-    if (a->has_flow_at)
-        o->flow_at = a->flow_at;
+    o->flow_at = a->has_flow_at ? a->flow_at : 0.5 * (s0 + s1);
     mimas_tracking_options *t = &u->to;
     t->max_shift = a->max_shift > 0 ? a->max_shift : NAN;
     t->bins.d = d;

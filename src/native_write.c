@@ -1,6 +1,7 @@
-/* Native format writer (docs/format.md).  Frames are appended one at a time;
- * each append ends with a flush, and file space is only ever taken from the
- * end of the file, so what a flush committed is never overwritten later: a
+/* Native format writer (docs/format.md).  Frames are appended one at a time
+ * and committed in batches, each commit ending with a flush (the rule is at
+ * COMMIT_SECONDS_MIN below); file space is only ever taken from the end of the
+ * file, so what a flush committed is never overwritten later: a
  * process killed in the middle of a frame leaves a file whose committed
  * frames read back intact.
  *
