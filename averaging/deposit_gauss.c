@@ -305,6 +305,28 @@ static inline int reach_span(const row_geom *rg, double xs, int n, int *c0, int 
     return 1;
 }
 
+/* The powers X_k^i (i < n) of the nq nodes' factors (nq a multiple of 4), four nodes at a
+ * time: node-minor (p[i nq + k]) when n0p is 0, else node-major in rows of n0p, padded
+ * with zeros (p[k n0p + i]).  Each power is the running product, as one node at a time. */
+static inline void node_powers(const double *X, int nq, int n, int n0p, double *restrict p)
+{
+    for (int k = 0; k < nq; k += 4) {
+        double Xk[4] = {X[k], X[k + 1], X[k + 2], X[k + 3]}, v[4] = {1.0, 1.0, 1.0, 1.0};
+        for (int i = 0; i < n; i++) {
+            for (int u = 0; u < 4; u++) {
+                if (n0p)
+                    p[(size_t)(k + u) * n0p + i] = v[u];
+                else
+                    p[(size_t)i * nq + k + u] = v[u];
+                v[u] *= Xk[u];
+            }
+        }
+        for (int u = 0; n0p && u < 4; u++)
+            for (int i = n; i < n0p; i++)
+                p[(size_t)(k + u) * n0p + i] = 0.0;
+    }
+}
+
 /* The uncut part: with d = r - a (the cell centre from a), node s of the rule and
  * k = 1/2w^2,
  *   e^{-|d - s b|^2 k} = e^{-|d|^2 k} e^{(2 s d_0.b - s^2 |b|^2) k} prod_x X_x(s)^{i_x},
@@ -391,26 +413,19 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
                 X[p * per + half + m] = cp * xm;
             }
         }
-        for (int k = 0; k < nqp; k++) {
-            double Xk = k < nq ? X[k] : 0.0, v = 1.0;
-            for (int i = 0; i < n[d]; i++) {
-                if (d == 0)
-                    ex0[(size_t)k * n0p + i] = v;
-                else
-                    (d == 1 ? exy : exz)[(size_t)i * nqp + k] = v;
-                v *= Xk;
-            }
-            for (int i = n[d]; d == 0 && i < n0p; i++)
-                ex0[(size_t)k * n0p + i] = 0.0;
-        }
+        for (int k = nq; k < nqp; k++)
+            X[k] = 0.0;
+        node_powers(X, nqp, n[d], d == 0 ? n0p : 0, d == 0 ? ex0 : (d == 1 ? exy : exz));
         dep_gauss_row(dp, d, lo[d], n[d], b[d], eb[d], 1);
         o += n[d];
     }
+    dep_cursor cur = dep_cursor_at(ws);
     double coef = wt->coef, sh = coef * wt->shift, pyz = bv[1] * bv[1] + bv[2] * bv[2];
     double inv_l2 = 1.0 / l2, inv_len = 1.0 / len, inv_pyz = pyz > 0 ? 1.0 / pyz : 0.0;
     shell_consts sc = {R2, 1.0 / (M_SQRT2 * wt->w), wt->tail,
                        coef * sqrt(M_PI / 2.0) * wt->w / len, coef * wt->shift / len};
-    for (int kz = 0; kz < n[2]; kz++)
+    for (int kz = 0; kz < n[2]; kz++) {
+        size_t plane = (size_t)lo[0] + (size_t)g->n[0] * (size_t)g->n[1] * (size_t)(lo[2] + kz);
         for (int j = 0; j < n[1]; j++) {
             double qay = qa[1][j] + qa[2][kz], qby = qb[1][j] + qb[2][kz];
             double tyz = dx[1][j] * bv[1] + dx[2][kz] * bv[2];
@@ -421,8 +436,7 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
             double ry = dx[1][j] - ty * bv[1], rz = dx[2][kz] - ty * bv[2];
             if (ry * ry + rz * rz >= R2)
                 continue;
-            size_t row = (size_t)lo[0] + (size_t)g->n[0] * ((size_t)(lo[1] + j) +
-                                                            (size_t)g->n[1] * (size_t)(lo[2] + kz));
+            size_t row = plane + (size_t)g->n[0] * (size_t)(lo[1] + j);
             /* The cells within R of the segment form an interval of the row (the
              * distance to a segment is convex along a line), holding the point nearest
              * to the segment, x = a + ty b: walk out from the cells on either side of
@@ -446,7 +460,7 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
                 node_sums(ex0, (size_t)n0p, eyz, nq, i0 & ~3, (i1 + 4) & ~3, vrow);
                 double ayz = coef * ea[1][j] * ea[2][kz];
                 for (int i = i0; i <= i1; i++)
-                    dep_put(ws, row + (size_t)i, ayz * ea[0][i] * vrow[i] - sh);
+                    dep_cursor_put(&cur, row + (size_t)i, ayz * ea[0][i] * vrow[i] - sh);
             } else {
                 i0 = c1 + 1; /* no such cells: every cell of [c0, c1] is cut */
                 i1 = c1;
@@ -463,9 +477,11 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
                 double v = shell_cell(&sc, qai < R2, qbi < R2, t * inv_len, qai, len,
                                       ea[0][i] * eayz, eb[0][i] * ebyz);
                 if (v != 0.0)
-                    dep_put(ws, row + (size_t)i, v);
+                    dep_cursor_put(&cur, row + (size_t)i, v);
             }
         }
+    }
+    dep_cursor_done(ws, &cur);
     return MIMAS_OK;
 }
 

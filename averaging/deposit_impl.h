@@ -30,6 +30,30 @@ static inline void dep_put_grad(mimas_weights *ws, size_t cell, double w, double
     dep_put(ws, cell, w);
 }
 
+/* A write position in the list for a loop that puts many entries: its pointers stay in
+ * registers, where ws->n would be stored and reloaded at every entry. */
+typedef struct dep_cursor {
+    size_t *restrict cell;
+    double *restrict w;
+} dep_cursor;
+
+static inline dep_cursor dep_cursor_at(mimas_weights *ws)
+{
+    return (dep_cursor){ws->cell + ws->n, ws->w + ws->n};
+}
+
+static inline void dep_cursor_put(dep_cursor *c, size_t cell, double w)
+{
+    *c->cell++ = cell;
+    *c->w++ = w;
+}
+
+/* The list ends where the cursor is. */
+static inline void dep_cursor_done(mimas_weights *ws, const dep_cursor *c)
+{
+    ws->n = (size_t)(c->cell - ws->cell);
+}
+
 /* The centre of cell i along direction d (the last cell's upper edge is the grid's). */
 static inline double dep_centre(const mimas_deposit *dp, int d, int i)
 {
