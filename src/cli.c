@@ -40,6 +40,8 @@ static const cli_option input_options[] = {
     {"quiet", 'q', NULL, "no progress output"},
 };
 #define NINPUT (sizeof input_options / sizeof input_options[0])
+/* The stream buffer of a table written to a file */
+#define CLI_OUTPUT_BUFFER ((size_t)1 << 20)
 
 void cli_inputs_free(cli_inputs *in)
 {
@@ -577,6 +579,11 @@ int cli_output_open(cli_output *o, const char *path, mimas_error *err)
         mimas_tmpfile_forget(o->slot);
         return mimas_error_set(err, MIMAS_EIO, "%s: cannot write: %s", path, strerror(e));
     }
+    /* a file takes the table in large writes (a 15 MB table in 15 rather than 3,700
+     * system calls); a pipe or device as it comes.  glibc ignores the size unless
+     * given the buffer. */
+    if (o->tmp[0] && (o->buf = malloc(CLI_OUTPUT_BUFFER)))
+        setvbuf(o->fp, o->buf, _IOFBF, CLI_OUTPUT_BUFFER);
     return MIMAS_OK;
 }
 
@@ -594,6 +601,8 @@ int cli_output_close(cli_output *o, int ok, mimas_error *err)
         int bad = ferror(o->fp) != 0;
         errno = 0;
         int closed = fclose(o->fp) == 0;
+        free(o->buf);
+        o->buf = NULL;
         if (ok && (bad || !closed || (o->tmp[0] && rename(o->tmp, o->path) != 0)))
             rc = mimas_error_set(err, MIMAS_EIO, "%s: cannot write the table: %s", o->path,
                                  errno ? strerror(errno) : "write error");

@@ -96,6 +96,7 @@ typedef struct cli_output {
     const char *path;   /* NULL: standard output */
     char tmp[4200];     /* "": written straight to path (a device or a pipe) */
     int slot;           /* in the temporary-file registry (src/tmpfiles.h) */
+    char *buf;          /* the stream's buffer (a file's: large), or NULL */
 } cli_output;
 /* path NULL or "-": standard output; a path that is not a regular file
  * (/dev/null, a pipe) is written straight through. */
