@@ -165,7 +165,7 @@ static int parse_row(dump_series *s, const atom_layout *l, mimas_particles *p, s
             bad = skip_token(&q);
             break;
         default:
-            bad = parse_double(&q, &dv);
+            bad = parse_double_in_line(&q, &dv);
         }
         if (bad == -1)
             return text_error(&s->in, err, "row has %zu values, the ATOMS header names %zu", c,

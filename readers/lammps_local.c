@@ -405,7 +405,7 @@ int local_read(dump_series *s, local_layout *l, mimas_frame *f, const mimas_id_i
         for (size_t col = 0; !rc && col < ncols; col++) {
             const dump_col *lc = &l->c.cols[col];
             double v = 0;
-            int bad = lc->target == L_SKIP ? skip_token(&q) : parse_double(&q, &v);
+            int bad = lc->target == L_SKIP ? skip_token(&q) : parse_double_in_line(&q, &v);
             if (bad == -1) {
                 rc = text_error(&s->in, err, "row has %zu values, the header names %zu", col,
                                 ncols);

@@ -122,8 +122,9 @@ static const char *quote_token(const char *p, char buf[41])
 
 /* Parses the whitespace-separated numbers at p into v (at most cap of them)
  * and returns how many tokens the line has, or -1 with *bad pointing at the
- * first token (within the first cap) that is not a finite number. */
-static int split_numbers(char *p, double *v, int cap, char **bad)
+ * first token (within the first cap) that is not a finite number.  in_line: p
+ * lies in a line from text_line (read ahead on its padding). */
+static int split_numbers(char *p, double *v, int cap, char **bad, int in_line)
 {
     int count = 0;
     for (;;) {
@@ -131,7 +132,8 @@ static int split_numbers(char *p, double *v, int cap, char **bad)
         if (*p == '\0')
             return count;
         if (count < cap) {
-            if (parse_double(&p, &v[count]) != 0) {
+            if ((in_line ? parse_double_in_line(&p, &v[count]) : parse_double(&p, &v[count])) !=
+                0) {
                 *bad = p;
                 return -1;
             }
@@ -224,7 +226,7 @@ static int parse_header(merc_state *s, char *line, mimas_error *err)
     const text_input *in = &s->data.in;
     double v[ROW_3D];
     char *bad, *p = line;
-    int k = split_numbers(line, v, ROW_3D, &bad);
+    int k = split_numbers(line, v, ROW_3D, &bad, 1);
     if (k < 0)
         return bad_number(in, err, line, bad);
     int dim = k == HEADER_3D ? 3 : k == HEADER_2D ? 2 : 0;
@@ -362,7 +364,7 @@ static int read_particles(merc_state *s, mimas_frame *f, mimas_error *err)
                                    "after %zu", s->hdr_line, s->hdr_t, s->hdr_n, k);
         double v[ROW_3D];
         char *bad;
-        int count = split_numbers(line, v, width, &bad);
+        int count = split_numbers(line, v, width, &bad, 1);
         if (count < 0)
             return bad_number(&s->data.in, err, line, bad);
         if (count != width)
@@ -390,7 +392,7 @@ static int opening_line(merc_state *s, char *line, int *opening, mimas_error *er
     double v[2];
     char *bad;
     *opening = 0;
-    if (split_numbers(line + 1, v, 2, &bad) != 2)
+    if (split_numbers(line + 1, v, 2, &bad, 1) != 2)
         return MIMAS_OK; /* the box line and the radii line have 6 values (radii may be nan) */
     if (v[1] != 0.0 && v[1] != 1.0)
         return text_error(&s->fstat.in, err, "time-step line '# t marker' has marker %.10g; "
@@ -526,7 +528,7 @@ static int contact_row(merc_state *s, mimas_frame *f, char *line, mimas_error *e
 {
     double v[FSTAT_ROW];
     char *bad;
-    int count = split_numbers(line, v, FSTAT_ROW, &bad);
+    int count = split_numbers(line, v, FSTAT_ROW, &bad, 1);
     if (count < 0)
         return bad_number(&s->fstat.in, err, line, bad);
     if (count != FSTAT_ROW)
@@ -789,7 +791,7 @@ static int probe_header(char *line, int64_t *count)
     double v[HEADER_3D];
     if (parse_int64(&p, count) != 0 || *count < 0)
         return 0;
-    int k = split_numbers(p, v, HEADER_3D, &bad);
+    int k = split_numbers(p, v, HEADER_3D, &bad, 0);
     return k == HEADER_2D - 1 || k == HEADER_3D - 1 ? k + 1 : 0;
 }
 
@@ -811,7 +813,7 @@ static int probe(const char *path, const char *head, size_t n)
         return l2[strspn(l2, " \t")] == '\0' || probe_header(l2, &c2) == width;
     }
     double v[ROW_3D];
-    int cols = split_numbers(l2, v, ROW_3D, &bad);
+    int cols = split_numbers(l2, v, ROW_3D, &bad, 0);
     return cols == (width == HEADER_3D ? ROW_3D : ROW_2D);
 }
 

@@ -15,7 +15,7 @@ int text_open(text_input *t, const char *path, mimas_error *err)
 {
     memset(t, 0, sizeof *t);
     t->path = strdup(path);
-    t->buf = malloc(2 * BLOCK + 1);
+    t->buf = malloc(2 * BLOCK + 1 + TEXT_LINE_PAD);
     if (!t->path || !t->buf) {
         text_close(t);
         return mimas_error_set(err, MIMAS_EIO, "out of memory for the text reader");
@@ -69,7 +69,7 @@ static long refill(text_input *t, int *rc, mimas_error *err)
             *rc = text_error(t, err, "line longer than %u MB: not a text dump", MAX_LINE >> 20);
             return -1;
         }
-        char *b = realloc(t->buf, 2 * t->cap + 1);
+        char *b = realloc(t->buf, 2 * t->cap + 1 + TEXT_LINE_PAD);
         if (!b) {
             *rc = mimas_error_set(err, MIMAS_EIO, "out of memory for the text reader");
             return -1;
@@ -96,6 +96,7 @@ static long refill(text_input *t, int *rc, mimas_error *err)
         }
     }
     t->len += (size_t)n;
+    memset(t->buf + t->len, 0, TEXT_LINE_PAD); /* what a last line's padding reads */
     return n;
 }
 

@@ -17,9 +17,13 @@ typedef struct text_input {
     int eof;
 } text_input;
 
+enum { TEXT_LINE_PAD = 8 };
+
 int text_open(text_input *t, const char *path, mimas_error *err);
 /* The next line without its newline, NUL-terminated and writable, valid until
- * the next call; *len its length.  Returns NULL at the end of the file (rc
+ * the next call; *len its length.  TEXT_LINE_PAD bytes after its NUL can be
+ * read (what follows in the buffer, or zeros): word-wise parsing may look past
+ * the end (parse_double_in_line).  Returns NULL at the end of the file (rc
  * MIMAS_OK) or on an error (rc set, err filled: unreadable, binary, corrupt
  * gzip data). */
 char *text_line(text_input *t, size_t *len, int *rc, mimas_error *err);

@@ -15,19 +15,77 @@
 #include <string.h>
 
 #include "numparse.h"
+#include "text_input.h"
+
+/* parse_double_in_line on a line in a buffer of exactly the padding text_line
+ * guarantees (so that AddressSanitizer sees any read beyond it) gives what
+ * parse_double gives: the code, the value's bits and the end of the token. */
+static int in_line_agrees(const char *text, double *v)
+{
+    size_t n = strlen(text);
+    char *line = malloc(n + 1 + TEXT_LINE_PAD), buf[256];
+    assert_non_null(line);
+    memcpy(line, text, n + 1);
+    memset(line + n + 1, '7', TEXT_LINE_PAD); /* digits after the end: must not be read as the token's */
+    snprintf(buf, sizeof buf, "%s", text);
+    char *p = buf, *q = line;
+    double w = -1.0;
+    *v = -2.0;
+    int rc = parse_double(&p, v), rq = parse_double_in_line(&q, &w);
+    if (rc != rq || (rc == 0 && (memcmp(v, &w, sizeof w) != 0 || p - buf != q - line)))
+        fail_msg("'%s': parse_double %d %.17g, in a line %d %.17g", text, rc, *v, rq, w);
+    free(line);
+    return rc;
+}
 
 static void same_as_strtod(const char *text)
 {
-    char buf[128];
-    snprintf(buf, sizeof buf, "%s", text);
-    char *p = buf;
     double v;
-    if (parse_double(&p, &v) != 0)
+    if (in_line_agrees(text, &v) != 0)
         fail_msg("'%s' is not read", text);
     double ref = strtod(text, NULL);
     if (memcmp(&v, &ref, sizeof v) != 0)
         fail_msg("'%s': %.17g, strtod %.17g", text, v, ref);
-    assert_true(*p == '\0');
+}
+
+/* Runs of digits about the eight read at a time and the 19 kept: 1 to 30 digits before
+ * and after the point, with leading zeros, an exponent, or a byte that ends the run
+ * early (letters and bytes from 0xFA, whose +6 carries into the next byte). */
+static void test_digit_runs(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(rng, 11);
+    char text[96];
+    const char *tails[5] = {"", "e-7", "E+12", "x", "\xfa" "1"};
+    for (int k = 0; k < 100000; k++) {
+        int a = (int)gsl_rng_uniform_int(rng, 31), b = (int)gsl_rng_uniform_int(rng, 31);
+        int z = (int)gsl_rng_uniform_int(rng, 4), t = (int)gsl_rng_uniform_int(rng, 5), n = 0;
+        if (gsl_rng_uniform(rng) < 0.3)
+            text[n++] = '-';
+        for (int i = 0; i < z; i++)
+            text[n++] = '0';
+        for (int i = 0; i < a; i++)
+            text[n++] = (char)('0' + gsl_rng_uniform_int(rng, 10));
+        if (b || !a) {
+            text[n++] = '.';
+            for (int i = 0; i < z && a == 0; i++)
+                text[n++] = '0';
+            for (int i = 0; i < b; i++)
+                text[n++] = (char)('0' + gsl_rng_uniform_int(rng, 10));
+        }
+        snprintf(text + n, sizeof text - (size_t)n, "%s", tails[t]);
+        double v;
+        int rc = in_line_agrees(text, &v);
+        if (t < 3 && (a || b || z)) {
+            double ref = strtod(text, NULL);
+            if (rc != 0 || memcmp(&v, &ref, sizeof v) != 0)
+                fail_msg("'%s': %d %.17g, strtod %.17g", text, rc, v, ref);
+        } else if (t >= 3) {
+            assert_int_equal(rc, -2);
+        }
+    }
+    gsl_rng_free(rng);
 }
 
 static void test_fixed_cases(void **state)
@@ -139,6 +197,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fixed_cases),
         cmocka_unit_test(test_random_numbers),
+        cmocka_unit_test(test_digit_runs),
         cmocka_unit_test(test_long_and_halfway),
         cmocka_unit_test(test_tokens_and_errors),
     };
