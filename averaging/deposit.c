@@ -607,10 +607,12 @@ static int walk_segment(const mimas_deposit *dp, const double a[3], const double
     int nt = 0;
     t[nt++] = 0.0;
     for (int d = 0; d < 3; d++) {
-        double lo = fmin(a[d], b[d]), hi = fmax(a[d], b[d]), len = b[d] - a[d];
+        /* the positions are finite: plain comparisons (fmin and fmax are library calls) */
+        double lo = a[d] < b[d] ? a[d] : b[d], hi = a[d] < b[d] ? b[d] : a[d],
+               len = b[d] - a[d];
         if (!(hi > lo))
             continue;
-        double k0 = ceil((fmax(lo, g->lo[d]) - g->lo[d]) / dp->h[d]);
+        double k0 = ceil(((lo > g->lo[d] ? lo : g->lo[d]) - g->lo[d]) / dp->h[d]);
         for (double k = k0;; k++) {
             double x = g->lo[d] + k * dp->h[d];
             if (x >= hi || x > g->hi[d])

@@ -115,7 +115,7 @@ static inline void ring_lanes(const mimas_deposit *dp, const double *dr2, const 
                        (X > (double)RING_XMAX));
     ring_v4 T0;
     for (int l = 0; l < 4; l++)
-        T0[l] = ring_m_half_at(fmin(X[l], RING_XMAX));
+        T0[l] = ring_m_half_at(X[l] < RING_XMAX ? X[l] : RING_XMAX); /* fmin, inline */
     ring_v4 U = wt->tail * T0, xn = zero + wt->tail, ian = one,
             yn = one, s0 = zero, sa = zero;
     for (int n = 0; n <= RING_LANE_N; n++) {
