@@ -312,7 +312,9 @@ const cli_command cmd_radial = {
     "s), granular temperature and rotational energy, averaged over the probes of\n"
     "the radius, then over frames (or plugs with --in-plugs) with standard\n"
     "errors.  Writes r porosity nu v_r v_phi v_s T E_rot count, the _sem columns\n"
-    "and probes (docs/radial.md, docs/theory.md section 7.4).",
+    "and probes (docs/radial.md, docs/theory.md section 7.4).  The options of\n"
+    "plug detection (--range, --slice, --threshold, --min-length) matter only\n"
+    "with --in-plugs.",
     options,
     sizeof options / sizeof options[0],
     1,
