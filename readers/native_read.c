@@ -16,6 +16,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "h5_direct.h"
 #include "h5util.h"
 #include "id_index.h"
 #include "native_layout.h"
@@ -160,8 +161,11 @@ static herr_t scan_member(hid_t g, const char *name, scan_ctx *s)
         const mimas_table_desc *d = s->flat == &r->contacts ? &mimas_contacts_desc
                                                             : &mimas_walls_desc;
         s->rc = classify(r, d, &nc, ds, 1, path, s->err);
+        if (!s->rc)
+            nc.direct = h5_direct_open(ds, native_mem_type(nc.type));
         native_col *grown = realloc(s->flat->cols, (s->flat->ncols + 1) * sizeof nc);
         if (!grown) {
+            h5_direct_close(nc.direct);
             H5Dclose(ds);
             s->rc = mimas_error_set(s->err, MIMAS_EIO, "out of memory for the native reader");
             return 1;
@@ -181,8 +185,11 @@ static herr_t scan_member(hid_t g, const char *name, scan_ctx *s)
     if (ds < 0)
         return 0;
     s->rc = classify(r, &mimas_particles_desc, &nc, ds, 2, path, s->err);
+    if (!s->rc)
+        nc.direct = h5_direct_open(ds, native_mem_type(nc.type));
     native_col *grown = realloc(r->pcols, (r->npcols + 1) * sizeof nc);
     if (!grown) {
+        h5_direct_close(nc.direct);
         H5Dclose(ds);
         s->rc = mimas_error_set(s->err, MIMAS_EIO, "out of memory for the native reader");
         return 1;
@@ -517,9 +524,11 @@ static int check_index(mimas_native *r, mimas_error *err)
 
 static void close_cols(native_col *cols, size_t n)
 {
-    for (size_t c = 0; c < n; c++)
+    for (size_t c = 0; c < n; c++) {
+        h5_direct_close(cols[c].direct);
         if (cols[c].ds > 0)
             H5Dclose(cols[c].ds);
+    }
     free(cols);
 }
 
@@ -716,6 +725,15 @@ static herr_t read_block(hid_t ds, hid_t memtype, int rank, const hsize_t *start
     return rc;
 }
 
+/* A column's block: by its chunks where it can (h5_direct.h), else by H5Dread. */
+static herr_t read_col(const native_col *c, int rank, const hsize_t *start,
+                       const hsize_t *count, void *buf)
+{
+    if (c->direct && h5_direct_read(c->direct, start, count, buf) == 0)
+        return 0;
+    return read_block(c->ds, native_mem_type(c->type), rank, start, count, buf);
+}
+
 static herr_t read_at(hid_t ds, hsize_t k, hid_t memtype, void *value)
 {
     hsize_t one = 1;
@@ -793,8 +811,8 @@ static int read_particles(mimas_native *r, size_t k, mimas_frame *f, mimas_error
     for (size_t c = 0; !rc && c < r->npcols; c++) {
         int rank = bound[c].ncomp == 1 ? 2 : 3;
         hsize_t start[3] = {k, 0, 0}, count[3] = {1, n, (hsize_t)bound[c].ncomp};
-        if (read_block(bound[c].ds, native_mem_type(bound[c].type), rank, start, count,
-                       native_col_data(p, &mimas_particles_desc, &bound[c])) < 0)
+        if (read_col(&bound[c], rank, start, count,
+                     native_col_data(p, &mimas_particles_desc, &bound[c])) < 0)
             rc = bad(r, err, "cannot read %s of frame %zu", bound[c].name, k);
     }
     return rc;
@@ -843,8 +861,7 @@ static int read_flat_frame(mimas_native *r, read_flat *t, size_t k, void *tab,
         int is_index = bound[c].type == MIMAS_T_INDEX;
         if (is_index && ensure_ids(r, n))
             return mimas_error_set(err, MIMAS_EIO, "out of memory for the native reader");
-        if (read_block(bound[c].ds, native_mem_type(bound[c].type), rank, s, cnt,
-                       is_index ? (void *)r->ids : dst) < 0)
+        if (read_col(&bound[c], rank, s, cnt, is_index ? (void *)r->ids : dst) < 0)
             return bad(r, err, "cannot read %s/%s of frame %zu", d->name, bound[c].name, k);
         if (!is_index)
             continue;

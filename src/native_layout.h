@@ -29,6 +29,7 @@ typedef struct native_col {
     long desc_col;
     long extra;
     hid_t ds;
+    struct h5_direct *direct; /* the reader's: ds by its chunks (h5_direct.h), or NULL */
 } native_col;
 
 hid_t native_file_type(mimas_elem_type t);

@@ -39,7 +39,7 @@ printf '%s\n' $sources "tests/fuzz/fuzz_input.c" | xargs -P "$(nproc 2>/dev/null
 ar rcs "$out/libmimas-fuzz.a" "$out"/obj/*.o
 targets="dump local mercury native scenario thermo"
 libs="$hdf5 $(pkg-config --libs gsl fftw3) $(pkg-config --libs inih 2>/dev/null || echo -linih) \
-      -lvoro++ -ldouble-conversion -lz -lm"
+      -lvoro++ -ldouble-conversion -lz -ldeflate -lm"
 for t in $targets; do
     clang++ $cflags -fsanitize=fuzzer $incs -x c "$top/tests/fuzz/fuzz_$t.c" -x none \
         "$out/libmimas-fuzz.a" $libs -o "$out/fuzz_$t"
