@@ -149,18 +149,36 @@ void h5_direct_close(h5_direct *d)
 /* ---- reading -------------------------------------------------------------------------- */
 
 /* Decodes the chunk at (element) offset at into d->data; -1 if it cannot. */
+/* Room for n bytes in one of the scratch buffers; NULL when out of memory. */
+static unsigned char *room(unsigned char **buf, size_t *cap, size_t n)
+{
+    if (n > *cap) {
+        unsigned char *b = realloc(*buf, n);
+        if (!b)
+            return NULL;
+        *buf = b;
+        *cap = n;
+    }
+    return *buf;
+}
+
 static int decode_into(h5_direct *d, const hsize_t *at, unsigned char *raw, unsigned char *tmp);
 
-static int decode(h5_direct *d, const hsize_t *at)
+static int decode(h5_direct *d, h5_direct_scratch *s, const hsize_t *at)
 {
     d->cached = 0;
     if (!d->data && !(d->data = malloc(d->chunk_bytes)))
         return -1;
-    unsigned char *raw = malloc(d->raw_cap), *tmp = malloc(d->chunk_bytes);
-    int rc = raw && tmp ? decode_into(d, at, raw, tmp) : -1;
-    free(raw);
-    free(tmp);
-    return rc;
+    unsigned char *raw = room(&s->raw, &s->raw_cap, d->raw_cap),
+                  *tmp = room(&s->tmp, &s->tmp_cap, d->chunk_bytes);
+    return raw && tmp ? decode_into(d, at, raw, tmp) : -1;
+}
+
+void h5_direct_scratch_free(h5_direct_scratch *s)
+{
+    free(s->raw);
+    free(s->tmp);
+    memset(s, 0, sizeof *s);
 }
 
 /* decode with the buffers for the stored chunk and a step between filters */
@@ -202,7 +220,8 @@ static int decode_into(h5_direct *d, const hsize_t *at, unsigned char *raw, unsi
     return 0;
 }
 
-int h5_direct_read(h5_direct *d, const hsize_t *start, const hsize_t *count, void *buf)
+int h5_direct_read(h5_direct *d, h5_direct_scratch *s, const hsize_t *start,
+                   const hsize_t *count, void *buf)
 {
     const int R = d->rank;
     hsize_t first[H5_DIRECT_MAX_RANK], last[H5_DIRECT_MAX_RANK];
@@ -225,7 +244,7 @@ int h5_direct_read(h5_direct *d, const hsize_t *start, const hsize_t *count, voi
                                                               : at[k] + d->chunk[k];
             same = same && d->cached_at[k] == at[k];
         }
-        if (!same && decode(d, at))
+        if (!same && decode(d, s, at))
             return -1;
         /* rows of the innermost direction: contiguous in the chunk and in buf */
         size_t run = (size_t)(hi[R - 1] - lo[R - 1]) * d->elem;

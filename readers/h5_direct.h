@@ -15,10 +15,18 @@ typedef struct h5_direct h5_direct;
 h5_direct *h5_direct_open(hid_t ds, hid_t memtype);
 void h5_direct_close(h5_direct *d);
 
+/* Working space for decoding, shared by the readers of a file (zero it to start). */
+typedef struct h5_direct_scratch {
+    unsigned char *raw, *tmp;
+    size_t raw_cap, tmp_cap;
+} h5_direct_scratch;
+void h5_direct_scratch_free(h5_direct_scratch *s);
+
 /* The block [start, start + count) (one entry per dimension) into buf in row order,
  * as H5Dread with a memory space of the block's shape; 0, or -1 if it cannot (a
  * chunk not written, data that do not decode, out of memory): read it with H5Dread
  * then, which also reports a damaged file. */
-int h5_direct_read(h5_direct *d, const hsize_t *start, const hsize_t *count, void *buf);
+int h5_direct_read(h5_direct *d, h5_direct_scratch *s, const hsize_t *start,
+                   const hsize_t *count, void *buf);
 
 #endif

@@ -50,6 +50,7 @@ struct mimas_native {
     mimas_id_index index;
     int64_t *ids;
     size_t ids_cap;
+    h5_direct_scratch direct;  /* the columns' decoding space */
     char creator[96];
     mimas_parameters params;     /* /parameters/scenario */
     size_t nobs;                 /* /observables/all/NAME but particle_count */
@@ -562,6 +563,7 @@ void mimas_native_close(mimas_native *r)
     h5_quiet_end(&q);
     mimas_id_index_free(&r->index);
     free(r->ids);
+    h5_direct_scratch_free(&r->direct);
     free(r->path);
     free(r);
 }
@@ -726,10 +728,10 @@ static herr_t read_block(hid_t ds, hid_t memtype, int rank, const hsize_t *start
 }
 
 /* A column's block: by its chunks where it can (h5_direct.h), else by H5Dread. */
-static herr_t read_col(const native_col *c, int rank, const hsize_t *start,
+static herr_t read_col(mimas_native *r, const native_col *c, int rank, const hsize_t *start,
                        const hsize_t *count, void *buf)
 {
-    if (c->direct && h5_direct_read(c->direct, start, count, buf) == 0)
+    if (c->direct && h5_direct_read(c->direct, &r->direct, start, count, buf) == 0)
         return 0;
     return read_block(c->ds, native_mem_type(c->type), rank, start, count, buf);
 }
@@ -811,7 +813,7 @@ static int read_particles(mimas_native *r, size_t k, mimas_frame *f, mimas_error
     for (size_t c = 0; !rc && c < r->npcols; c++) {
         int rank = bound[c].ncomp == 1 ? 2 : 3;
         hsize_t start[3] = {k, 0, 0}, count[3] = {1, n, (hsize_t)bound[c].ncomp};
-        if (read_col(&bound[c], rank, start, count,
+        if (read_col(r, &bound[c], rank, start, count,
                      native_col_data(p, &mimas_particles_desc, &bound[c])) < 0)
             rc = bad(r, err, "cannot read %s of frame %zu", bound[c].name, k);
     }
@@ -861,7 +863,7 @@ static int read_flat_frame(mimas_native *r, read_flat *t, size_t k, void *tab,
         int is_index = bound[c].type == MIMAS_T_INDEX;
         if (is_index && ensure_ids(r, n))
             return mimas_error_set(err, MIMAS_EIO, "out of memory for the native reader");
-        if (read_col(&bound[c], rank, s, cnt, is_index ? (void *)r->ids : dst) < 0)
+        if (read_col(r, &bound[c], rank, s, cnt, is_index ? (void *)r->ids : dst) < 0)
             return bad(r, err, "cannot read %s/%s of frame %zu", d->name, bound[c].name, k);
         if (!is_index)
             continue;

@@ -58,6 +58,7 @@ static void random_blocks(gsl_rng *rng, hid_t ds, hid_t type, size_t elem, int r
                           const hsize_t *dims)
 {
     h5_direct *d = h5_direct_open(ds, type);
+    h5_direct_scratch scratch = {0};
     assert_non_null(d);
     size_t total = elem;
     for (int k = 0; k < rank; k++)
@@ -78,13 +79,14 @@ static void random_blocks(gsl_rng *rng, hid_t ds, hid_t type, size_t elem, int r
         for (int k = 0; k < rank; k++)
             n *= count[k];
         memset(got, 0xA5, n);
-        assert_int_equal(h5_direct_read(d, start, count, got), 0);
+        assert_int_equal(h5_direct_read(d, &scratch, start, count, got), 0);
         reference_read(ds, type, rank, start, count, want);
         assert_memory_equal(got, want, n);
     }
     free(got);
     free(want);
     h5_direct_close(d);
+    h5_direct_scratch_free(&scratch);
 }
 
 static char *temp_name(void)
@@ -117,7 +119,7 @@ static void test_same_as_h5dread(void **state)
     for (int s = 0; s < 4; s++)
         for (int pipe = PIPE_NONE; pipe <= PIPE_BOTH; pipe++)
             for (int t = 0; t < 3; t++) {
-                char name[32];
+                char name[64];
                 snprintf(name, sizeof name, "d%d_%d_%d", s, pipe, t);
                 /* doubles, 64-bit and 32-bit integers (shuffle's element sizes 8 and 4) */
                 hid_t type = t == 0 ? H5T_NATIVE_DOUBLE : t == 1 ? H5T_NATIVE_INT64
@@ -161,13 +163,15 @@ static void test_skipped_filter(void **state)
                                sizeof shuffled, shuffled) >= 0);
     H5Fflush(file, H5F_SCOPE_LOCAL);
     h5_direct *d = h5_direct_open(ds, H5T_NATIVE_DOUBLE);
+    h5_direct_scratch scratch = {0};
     assert_non_null(d);
     hsize_t start[1] = {0}, count[1] = {64};
-    assert_int_equal(h5_direct_read(d, start, count, got), 0);
+    assert_int_equal(h5_direct_read(d, &scratch, start, count, got), 0);
     reference_read(ds, H5T_NATIVE_DOUBLE, 1, start, count, want);
     assert_memory_equal(got, want, sizeof got);
     assert_memory_equal(got, v, sizeof v);
     h5_direct_close(d);
+    h5_direct_scratch_free(&scratch);
     H5Dclose(ds);
     H5Fclose(file);
     remove(path);
@@ -198,11 +202,13 @@ static void test_left_to_h5dread(void **state)
     hid_t e = H5Dcreate2(file, "empty", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, dcpl,
                          H5P_DEFAULT);
     h5_direct *d = h5_direct_open(e, H5T_NATIVE_DOUBLE);
+    h5_direct_scratch scratch = {0};
     assert_non_null(d);
     hsize_t start[1] = {5}, count[1] = {20};
     double got[20];
-    assert_int_equal(h5_direct_read(d, start, count, got), -1);
+    assert_int_equal(h5_direct_read(d, &scratch, start, count, got), -1);
     h5_direct_close(d);
+    h5_direct_scratch_free(&scratch);
     H5Pclose(dcpl);
     H5Sclose(space);
     H5Dclose(a);
