@@ -110,11 +110,14 @@ static void test_same_as_h5dread(void **state)
                    {2, {777, 3}, {100, 3}},
                    {3, {5, 301, 3}, {1, 128, 3}},
                    {3, {4, 37, 5}, {3, 16, 2}}};
-    double *v = malloc(5 * 301 * 3 * sizeof *v);
-    int64_t *iv = malloc(5 * 301 * 3 * sizeof *iv);
-    for (int m = 0; m < 5 * 301 * 3; m++) {
+    enum { NMAX = 5 * 301 * 3 };
+    double *v = malloc(NMAX * sizeof *v);
+    int64_t *iv = malloc(NMAX * sizeof *iv);
+    int32_t *i32 = malloc(NMAX * sizeof *i32);
+    for (int m = 0; m < NMAX; m++) {
         v[m] = (gsl_rng_uniform(rng) - 0.5) * 1e-3; /* doubles: shuffle's 8-byte case */
         iv[m] = (int64_t)gsl_rng_uniform_int(rng, 100000) - 7;
+        i32[m] = (int32_t)iv[m];
     }
     for (int s = 0; s < 4; s++)
         for (int pipe = PIPE_NONE; pipe <= PIPE_BOTH; pipe++)
@@ -125,18 +128,15 @@ static void test_same_as_h5dread(void **state)
                 hid_t type = t == 0 ? H5T_NATIVE_DOUBLE : t == 1 ? H5T_NATIVE_INT64
                                                                  : H5T_NATIVE_INT32;
                 size_t elem = t == 2 ? 4 : 8;
-                int32_t *i32 = malloc(5 * 301 * 3 * sizeof *i32);
-                for (int m = 0; m < 5 * 301 * 3; m++)
-                    i32[m] = (int32_t)iv[m];
                 const void *data = t == 0 ? (const void *)v : t == 1 ? (const void *)iv : i32;
                 hid_t ds = make_dataset(file, name, shapes[s].rank, shapes[s].dims,
                                         shapes[s].chunk, pipe, type, data);
                 random_blocks(rng, ds, type, elem, shapes[s].rank, shapes[s].dims);
                 H5Dclose(ds);
-                free(i32);
             }
     free(v);
     free(iv);
+    free(i32);
     H5Fclose(file);
     remove(path);
     gsl_rng_free(rng);
