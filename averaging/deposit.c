@@ -163,24 +163,6 @@ void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weig
     dp->image_margin = image_margin(dp);
 }
 
-/* Cell index range [i0, i1] of direction d overlapping [lo, hi] (grid
- * coordinates); 0 if none.  Directions a kernel is integrated over have
- * their one cell whatever the range. */
-int dep_index_range(const mimas_deposit *dp, int d, double lo, double hi, int *i0, int *i1)
-{
-    const mimas_grid *g = dp->grid;
-    if (dp->kernel && !g->gridded[d] && (g->kind == MIMAS_GRID_CARTESIAN || d == 2)) {
-        *i0 = *i1 = 0;
-        return 1;
-    }
-    if (hi < g->lo[d] || lo > g->hi[d])
-        return 0;
-    double a = floor((lo - g->lo[d]) / dp->h[d]), b = floor((hi - g->lo[d]) / dp->h[d]);
-    *i0 = a < 0 ? 0 : (int)a;
-    *i1 = b >= g->n[d] ? g->n[d] - 1 : (int)b;
-    return *i0 <= *i1;
-}
-
 /* Bounds and centre of the cell with indices idx (no divisions). */
 static void cell_geometry(const mimas_deposit *dp, const int idx[3], double lo[3], double hi[3],
                           double c[3])
@@ -299,46 +281,6 @@ static int images_to_try(const mimas_deposit *dp, const double lo[3], const doub
     return 1;
 }
 
-/* e^{-(c_i - x)^2 k}, k = 1/2w^2, for the cells i = 0..n-1 of direction d from lo, c_i their
- * centres (uniform spacing h inside the grid): from the cell nearest to x
- * outwards by the Gaussian recurrence e_{i+1} = e_i r_i, r_{i+1} = r_i e^{-2 h^2 k}
- * (two products per cell; rounding grows by an ulp or two per step, ~1e-15 over
- * the few cells of a kernel), every value checked against the cutoff by the
- * caller.  The last cell of a grid may be shorter: its centre is taken exactly. */
-void dep_gauss_row(const mimas_deposit *dp, int d, int lo, int n, double x, double *e,
-                   size_t stride)
-{
-    double h = dp->h[d];
-    int m = (int)floor((x - dep_centre(dp, d, lo)) / h + 0.5);
-    if (m < 0)
-        m = 0;
-    if (m > n - 1)
-        m = n - 1;
-    double c = dep_centre(dp, d, lo + m) - x, k = dp->wt->inv2w2;
-    double q = dp->gq[d];
-    double e0 = exp(-c * c * k);
-    e[(size_t)m * stride] = e0;
-    /* upwards: (c + h)^2 - c^2 = 2 c h + h^2; downwards the ratio is q / that */
-    double up = exp(-(2.0 * c * h + h * h) * k), r = up, v = e0;
-    for (int i = m + 1; i < n; i++) {
-        v *= r;
-        r *= q;
-        e[(size_t)i * stride] = v;
-    }
-    r = q / up;
-    v = e0;
-    for (int i = m - 1; i >= 0; i--) {
-        v *= r;
-        r *= q;
-        e[(size_t)i * stride] = v;
-    }
-    /* the grid's last cell (its upper edge is the grid's bound): exact */
-    const mimas_grid *g = dp->grid;
-    if (lo + n == g->n[d] && n > 0 && m != n - 1) {
-        double cl = dep_centre(dp, d, lo + n - 1) - x;
-        e[(size_t)(n - 1) * stride] = exp(-cl * cl * k);
-    }
-}
 
 /* What a cell-by-cell deposit needs: the object (Cartesian and axis-frame
  * positions, radius) and, per cell, its weight and (kernels) gradient. */

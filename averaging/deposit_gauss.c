@@ -70,6 +70,47 @@ static inline double h_eval(double u)
     return tab_eval(htab, u);
 }
 
+/* e^{-(c_i - x)^2 k}, k = 1/2w^2, for the cells i = 0..n-1 of direction d from lo, c_i their
+ * centres (uniform spacing h inside the grid): from the cell nearest to x
+ * outwards by the Gaussian recurrence e_{i+1} = e_i r_i, r_{i+1} = r_i e^{-2 h^2 k}
+ * (two products per cell; rounding grows by an ulp or two per step, ~1e-15 over
+ * the few cells of a kernel), every value checked against the cutoff by the
+ * caller.  The last cell of a grid may be shorter: its centre is taken exactly.
+ * Inline, in the callers' vector build: three or six rows an object. */
+static inline void gauss_row(const mimas_deposit *dp, int d, int lo, int n, double x, double *e)
+{
+    double h = dp->h[d];
+    int m = (int)floor((x - dep_centre(dp, d, lo)) / h + 0.5);
+    if (m < 0)
+        m = 0;
+    if (m > n - 1)
+        m = n - 1;
+    double c = dep_centre(dp, d, lo + m) - x, k = dp->wt->inv2w2;
+    double q = dp->gq[d];
+    double e0 = exp(-c * c * k);
+    e[m] = e0;
+    /* upwards: (c + h)^2 - c^2 = 2 c h + h^2; downwards the ratio is q / that */
+    double up = exp(-(2.0 * c * h + h * h) * k), r = up, v = e0;
+    for (int i = m + 1; i < n; i++) {
+        v *= r;
+        r *= q;
+        e[i] = v;
+    }
+    r = q / up;
+    v = e0;
+    for (int i = m - 1; i >= 0; i--) {
+        v *= r;
+        r *= q;
+        e[i] = v;
+    }
+    /* the grid's last cell (its upper edge is the grid's bound): exact */
+    const mimas_grid *g = dp->grid;
+    if (lo + n == g->n[d] && n > 0 && m != n - 1) {
+        double cl = dep_centre(dp, d, lo + n - 1) - x;
+        e[n - 1] = exp(-cl * cl * k);
+    }
+}
+
 /* ---- particles --------------------------------------------------------------------- */
 
 MIMAS_SIMD
@@ -102,7 +143,7 @@ int mimas_gauss_sphere_xyz(const mimas_deposit *dp, const double x[3], int with_
             q[d][i] = dd * dd;
             gf[d][i] = -2.0 * wt->inv2w2 * dd;
         }
-        dep_gauss_row(dp, d, lo[d], len[d], x[d], e[d], 1);
+        gauss_row(dp, d, lo[d], len[d], x[d], e[d]);
     }
     const mimas_grid *g = dp->grid;
     double coef = wt->coef, sh = coef * wt->shift, R2 = wt->reach2;
@@ -311,6 +352,18 @@ static inline int reach_span(const row_geom *rg, double xs, int n, int *c0, int 
 static inline void node_powers(const double *X, int nq, int n, int n0p, double *restrict p)
 {
     for (int k = 0; k < nq; k += 4) {
+#if defined(MIMAS_HAVE_V4D)
+        /* the four running products in one register: node-minor rows are one store */
+        v4d Xk = *(const v4d *)(X + k), v = {1.0, 1.0, 1.0, 1.0};
+        for (int i = 0; i < n; i++) {
+            if (n0p)
+                for (int u = 0; u < 4; u++)
+                    p[(size_t)(k + u) * n0p + i] = v[u];
+            else
+                *(v4d *)(p + (size_t)i * nq + k) = v;
+            v *= Xk;
+        }
+#else
         double Xk[4] = {X[k], X[k + 1], X[k + 2], X[k + 3]}, v[4] = {1.0, 1.0, 1.0, 1.0};
         for (int i = 0; i < n; i++) {
             for (int u = 0; u < 4; u++) {
@@ -321,9 +374,53 @@ static inline void node_powers(const double *X, int nq, int n, int n0p, double *
                 v[u] *= Xk[u];
             }
         }
+#endif
         for (int u = 0; n0p && u < 4; u++)
             for (int i = n; i < n0p; i++)
                 p[(size_t)(k + u) * n0p + i] = 0.0;
+    }
+}
+
+/* Per row j of a plane of the box (across x, offsets dz, squared offsets qaz, qbz from a
+ * and b): |r - a|^2 and |r - b|^2 across x, (r - a).b across x, the parameter ty of the
+ * segment's point nearest to the row in the y-z projection, and the row's squared
+ * distance from that point.  The rows four at a time, each by the operations of one
+ * row; n1p rows (the box's rows rounded up to 4: the last ones are not used, the
+ * arrays read are followed by more of the scratch space). */
+typedef struct plane_rows {
+    double *qay, *qby, *tyz, *ty, *rr;
+} plane_rows;
+
+static inline void plane_rows_at(const double *dx1, const double *qa1, const double *qb1,
+                                 double dz, double qaz, double qbz, const double bv[3],
+                                 double inv_pyz, int n1p, const plane_rows *pr)
+{
+    double tz = dz * bv[2];
+    for (int j = 0; j < n1p; j += 4) {
+#if defined(MIMAS_HAVE_V4D)
+        typedef long long v4l __attribute__((vector_size(32)));
+        const v4d one = {1.0, 1.0, 1.0, 1.0};
+        v4d y = *(const v4d *)(dx1 + j), tyz = y * bv[1] + tz, ty = tyz * inv_pyz;
+        v4l below = ty < 0, above = ty > 1; /* ty < 0 ? 0 : (ty > 1 ? 1 : ty) */
+        ty = (v4d)(((v4l)ty & ~(below | above)) | ((v4l)one & above));
+        v4d ry = y - ty * bv[1], rz = dz - ty * bv[2];
+        *(v4d *)(pr->qay + j) = *(const v4d *)(qa1 + j) + qaz;
+        *(v4d *)(pr->qby + j) = *(const v4d *)(qb1 + j) + qbz;
+        *(v4d *)(pr->tyz + j) = tyz;
+        *(v4d *)(pr->ty + j) = ty;
+        *(v4d *)(pr->rr + j) = ry * ry + rz * rz;
+#else
+        for (int u = j; u < j + 4; u++) {
+            double tyz = dx1[u] * bv[1] + tz, ty = tyz * inv_pyz;
+            ty = ty < 0 ? 0.0 : (ty > 1 ? 1.0 : ty);
+            double ry = dx1[u] - ty * bv[1], rz = dz - ty * bv[2];
+            pr->qay[u] = qa1[u] + qaz;
+            pr->qby[u] = qb1[u] + qbz;
+            pr->tyz[u] = tyz;
+            pr->ty[u] = ty;
+            pr->rr[u] = ry * ry + rz * rz;
+        }
+#endif
     }
 }
 
@@ -347,7 +444,8 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
     /* the cells within R of the segment's bounding box */
     int lo[3], hi[3], n[3];
     for (int d = 0; d < 3; d++) {
-        if (!dep_index_range(dp, d, fmin(a[d], b[d]) - R, fmax(a[d], b[d]) + R, &lo[d], &hi[d]))
+        double lo_d = a[d] < b[d] ? a[d] : b[d], hi_d = a[d] < b[d] ? b[d] : a[d];
+        if (!dep_index_range(dp, d, lo_d - R, hi_d + R, &lo[d], &hi[d]))
             return MIMAS_OK;
         n[d] = hi[d] - lo[d] + 1;
     }
@@ -373,7 +471,9 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
      * about a and b; the nodes' powers X^i: x node-major (rows padded to 4), y and z
      * node-minor; the row's sums */
     size_t total = (size_t)n[0] + n[1] + n[2];
-    size_t nbuf = 5 * total + (size_t)nqp * ((size_t)n0p + n[1] + n[2]) + (size_t)n0p;
+    int n1p = (n[1] + 3) & ~3;
+    size_t nbuf = 5 * total + (size_t)nqp * ((size_t)n0p + n[1] + n[2]) + (size_t)n0p +
+                  5 * (size_t)n1p;
     double *buf = mimas_weights_scratch(ws, nbuf);
     if (!buf)
         return MIMAS_EIO;
@@ -388,6 +488,8 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
         sq[k] = wq[k] = 0.0;
     double *ex0 = buf + 5 * total, *exy = ex0 + (size_t)nqp * n0p, *exz = exy + (size_t)nqp * n[1];
     double *restrict vrow = exz + (size_t)nqp * n[2];
+    double *pbuf = vrow + n0p;
+    plane_rows pr = {pbuf, pbuf + n1p, pbuf + 2 * n1p, pbuf + 3 * n1p, pbuf + 4 * n1p};
     for (int d = 0, o = 0; d < 3; d++) {
         dx[d] = buf + o;
         qa[d] = buf + total + o;
@@ -400,7 +502,7 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
             qa[d][i] = da * da;
             qb[d][i] = db * db;
         }
-        dep_gauss_row(dp, d, lo[d], n[d], a[d], ea[d], 1);
+        gauss_row(dp, d, lo[d], n[d], a[d], ea[d]);
         /* X(s) for the node pairs s = c_p -+ x_m of each piece p: e^{c_p beta} e^{-+x_m beta},
          * one exponential per piece and per pair */
         double beta = 2.0 * bv[d] * dp->h[d] * kap, X[SEG_MAXNODE];
@@ -416,7 +518,7 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
         for (int k = nq; k < nqp; k++)
             X[k] = 0.0;
         node_powers(X, nqp, n[d], d == 0 ? n0p : 0, d == 0 ? ex0 : (d == 1 ? exy : exz));
-        dep_gauss_row(dp, d, lo[d], n[d], b[d], eb[d], 1);
+        gauss_row(dp, d, lo[d], n[d], b[d], eb[d]);
         o += n[d];
     }
     dep_cursor cur = dep_cursor_at(ws);
@@ -426,16 +528,13 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
                        coef * sqrt(M_PI / 2.0) * wt->w / len, coef * wt->shift / len};
     for (int kz = 0; kz < n[2]; kz++) {
         size_t plane = (size_t)lo[0] + (size_t)g->n[0] * (size_t)g->n[1] * (size_t)(lo[2] + kz);
+        plane_rows_at(dx[1], qa[1], qb[1], dx[2][kz], qa[2][kz], qb[2][kz], bv, inv_pyz, n1p, &pr);
         for (int j = 0; j < n[1]; j++) {
-            double qay = qa[1][j] + qa[2][kz], qby = qb[1][j] + qb[2][kz];
-            double tyz = dx[1][j] * bv[1] + dx[2][kz] * bv[2];
             /* the row (a line along x) is out of reach when the segment's projection
              * on the y-z plane stays R or more from the row's (y, z) */
-            double ty = tyz * inv_pyz;
-            ty = ty < 0 ? 0.0 : (ty > 1 ? 1.0 : ty);
-            double ry = dx[1][j] - ty * bv[1], rz = dx[2][kz] - ty * bv[2];
-            if (ry * ry + rz * rz >= R2)
+            if (pr.rr[j] >= R2)
                 continue;
+            double qay = pr.qay[j], qby = pr.qby[j], tyz = pr.tyz[j], ty = pr.ty[j];
             size_t row = plane + (size_t)g->n[0] * (size_t)(lo[1] + j);
             /* The cells within R of the segment form an interval of the row (the
              * distance to a segment is convex along a line), holding the point nearest

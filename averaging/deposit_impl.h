@@ -4,6 +4,7 @@
 #ifndef MIMAS_DEPOSIT_IMPL_H
 #define MIMAS_DEPOSIT_IMPL_H
 
+#include <math.h>
 #include <stddef.h>
 
 #include "deposit.h"
@@ -65,11 +66,24 @@ static inline double dep_centre(const mimas_deposit *dp, int d, int i)
  * axis-frame point a; 0 if there are none. */
 int dep_candidate_box(const mimas_deposit *dp, const double a[3], double reach, int lo[3],
                       int hi[3]);
-/* Cell index range [i0, i1] of direction d overlapping [lo, hi]; 0 if none. */
-int dep_index_range(const mimas_deposit *dp, int d, double lo, double hi, int *i0, int *i1);
-/* e^{-(c_i - x)^2 / 2w^2} for the n cells of direction d from cell lo (stride apart). */
-void dep_gauss_row(const mimas_deposit *dp, int d, int lo, int n, double x, double *e,
-                   size_t stride);
+/* Cell index range [i0, i1] of direction d overlapping [lo, hi] (grid
+ * coordinates); 0 if none.  Directions a kernel is integrated over have
+ * their one cell whatever the range.  Inline: the deposits call it for every
+ * object and direction. */
+static inline int dep_index_range(const mimas_deposit *dp, int d, double lo, double hi, int *i0, int *i1)
+{
+    const mimas_grid *g = dp->grid;
+    if (dp->kernel && !g->gridded[d] && (g->kind == MIMAS_GRID_CARTESIAN || d == 2)) {
+        *i0 = *i1 = 0;
+        return 1;
+    }
+    if (hi < g->lo[d] || lo > g->hi[d])
+        return 0;
+    double a = floor((lo - g->lo[d]) / dp->h[d]), b = floor((hi - g->lo[d]) / dp->h[d]);
+    *i0 = a < 0 ? 0 : (int)a;
+    *i1 = b >= g->n[d] ? g->n[d] - 1 : (int)b;
+    return *i0 <= *i1;
+}
 
 /* The Gaussian on a Cartesian x-y-z grid (dp->gauss_xyz): a particle (its value and
  * gradient at the cell centres) and a segment's exact line integral.  The segment
