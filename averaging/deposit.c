@@ -281,7 +281,6 @@ static int images_to_try(const mimas_deposit *dp, const double lo[3], const doub
     return 1;
 }
 
-
 /* What a cell-by-cell deposit needs: the object (Cartesian and axis-frame
  * positions, radius) and, per cell, its weight and (kernels) gradient. */
 typedef struct cell_object {
