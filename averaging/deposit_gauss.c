@@ -469,7 +469,7 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
         return MIMAS_EIO;
     /* per direction: offsets from a, squared offsets from a and b, the Gaussian factors
      * about a and b; the nodes' powers X^i: x node-major (rows padded to 4), y and z
-     * node-minor; the row's sums */
+     * node-minor; the row's sums; the row scalars of a plane (plane_rows_at) */
     size_t total = (size_t)n[0] + n[1] + n[2];
     int n1p = (n[1] + 3) & ~3;
     size_t nbuf = 5 * total + (size_t)nqp * ((size_t)n0p + n[1] + n[2]) + (size_t)n0p +
