@@ -55,12 +55,15 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
     a->cells = o->grid_none ? 1 : mimas_grid_cells(&o->grid);
     size_t nf = mimas_fields_count();
     a->sum = calloc(a->cells * NSUMS, sizeof *a->sum);
-    a->frame_sum = calloc(a->cells * NSUMS, sizeof *a->frame_sum);
-    a->scratch = calloc(nf, sizeof *a->scratch);
     a->threads = 1;
 #ifdef _OPENMP
     a->threads = o->threads > 0 ? o->threads : omp_get_max_threads();
 #endif
+    /* one frame's sums: where one thread deposits, and what the spread is taken of;
+     * more threads without the spread add their copies straight into the sum */
+    if (a->threads == 1 || o->spread)
+        a->frame_sum = calloc(a->cells * NSUMS, sizeof *a->frame_sum);
+    a->scratch = calloc(nf, sizeof *a->scratch);
     if (a->threads > 1)
         a->thread_sum = calloc((size_t)a->threads * a->cells * NSUMS, sizeof *a->thread_sum);
     a->ws = calloc((size_t)a->threads, sizeof *a->ws);
@@ -72,7 +75,7 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
                   (g->kind == MIMAS_GRID_CARTESIAN ? g->gridded[0] && g->gridded[1]
                                                    : g->gridded[1]);
     a->kappa = sampled && o->weight.kind == MIMAS_WEIGHT_GAUSS ? o->weight.kappa : 0.0;
-    int ok = a->sum && a->frame_sum && a->scratch && a->ws &&
+    int ok = a->sum && (a->frame_sum || (a->threads > 1 && !o->spread)) && a->scratch && a->ws &&
              (a->threads == 1 || a->thread_sum);
     if (ok && o->spread) {
         a->f_mean = calloc(a->cells * nf, sizeof *a->f_mean);
@@ -502,7 +505,8 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
          * result depends on the thread count only through summation order.
          * Zeroing the copies and adding them up (threads x cells x NSUMS doubles,
          * 100 MB on a 46^3 grid) are shared out among the threads too, each over its
-         * own range of sums, in the thread order of a serial sum (the same bits). */
+         * own range of sums, in the thread order of a serial sum (the same bits); the
+         * frame's own sums are kept only for the spread. */
 #ifdef _OPENMP
         int failed = 0;
 /* small frames on one thread: waking the others costs more than they do */
@@ -525,7 +529,8 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
                 double sum = 0.0;
                 for (int u = 0; u < nt; u++)
                     sum += a->thread_sum[(size_t)u * nsum + k];
-                S[k] = sum;
+                if (S)
+                    S[k] = sum;
                 a->sum[k] += sum;
             }
         }
