@@ -15,6 +15,10 @@
 #include "gauss_legendre.h"
 #include "simd.h"
 
+#if MIMAS_X86_DISPATCH
+#include <immintrin.h>
+#endif
+
 /* ---- G(u) = e^{u^2} erf(u) and H(u) = e^{u^2} erfc(u) ---------------------------------
  * G' = 2u G + 2/sqrt(pi) and H' = 2u H - 2/sqrt(pi): the Taylor coefficients of either about
  * u_c follow from a_0 (its value at u_c) by (k + 1) a_{k+1} = 2 u_c a_k + 2 a_{k-1}, a_1 =
@@ -25,7 +29,8 @@
  * 30-digit values: 5e-16).  The tables are the same for every kernel: made once. */
 enum { GT_N = 256, GT_DEG = 8 };
 static const double GT_DU = 1.0 / 64.0;
-static double gtab[GT_N][GT_DEG + 1], htab[GT_N][GT_DEG + 1];
+/* [0]: G, [1]: H, in one array for the AVX2 build's gathers */
+static double ghtab[2][GT_N][GT_DEG + 1];
 static pthread_once_t gtab_once = PTHREAD_ONCE_INIT;
 
 static void taylor_row(double uc, double a0, double sign, double *a)
@@ -40,8 +45,8 @@ static void gtab_setup(void)
 {
     for (int m = 0; m < GT_N; m++) {
         double uc = (m + 0.5) * GT_DU, e = exp(uc * uc);
-        taylor_row(uc, e * erf(uc), 1.0, gtab[m]);
-        taylor_row(uc, e * erfc(uc), -1.0, htab[m]);
+        taylor_row(uc, e * erf(uc), 1.0, ghtab[0][m]);
+        taylor_row(uc, e * erfc(uc), -1.0, ghtab[1][m]);
     }
 }
 
@@ -61,13 +66,13 @@ static inline double tab_eval(const double (*tab)[GT_DEG + 1], double x)
 /* G(u) for 0 <= u < 4 */
 static inline double g_eval(double u)
 {
-    return tab_eval(gtab, u);
+    return tab_eval(ghtab[0], u);
 }
 
 /* H(u) for 0 <= u < 4 */
 static inline double h_eval(double u)
 {
-    return tab_eval(htab, u);
+    return tab_eval(ghtab[1], u);
 }
 
 /* e^{-(c_i - x)^2 k}, k = 1/2w^2, for the cells i = 0..n-1 of direction d from lo, c_i their
@@ -424,164 +429,178 @@ static inline void plane_rows_at(const double *dx1, const double *qa1, const dou
     }
 }
 
-/* The uncut part: with d = r - a (the cell centre from a), node s of the rule and
- * k = 1/2w^2,
- *   e^{-|d - s b|^2 k} = e^{-|d|^2 k} e^{(2 s d_0.b - s^2 |b|^2) k} prod_x X_x(s)^{i_x},
- * d_0 the offset of the first cell of the box, i_x the cell's index in it and
- * X_x(s) = e^{2 s b_x h_x k}: per node one exponential and one per direction, the
- * powers by products.  The rows along x are summed 4 cells at a time over the nodes. */
-MIMAS_SIMD
+/* ---- the line integral, twice: for any processor, and with AVX2 -------------------- */
+
+#define SEG_FN mimas_gauss_segment_xyz_portable
+#define SEG_AVX2 0
+#include "deposit_gauss_segment.h"
+#undef SEG_FN
+#undef SEG_AVX2
+
+#if MIMAS_X86_DISPATCH
+#pragma GCC push_options
+#pragma GCC target("avx2")
+
+/* The cells where the cut ball cuts the segment, queued as the rows are classified (a row
+ * has one or two at either end) and evaluated four at a time: each cell's index and what
+ * shell_cell takes of it (|r - a|^2, |r - b|^2, the foot t, the Gaussian factors about a
+ * and b). */
+typedef struct cut_queue {
+    size_t *cell;
+    double *e, *qb, *t, *ea, *eb;
+    int n;
+} cut_queue;
+
+static inline void cut_push(cut_queue *q, size_t cell, double e, double qb, double t, double ea,
+                            double eb)
+{
+    int k = q->n++;
+    q->cell[k] = cell;
+    q->e[k] = e;
+    q->qb[k] = qb;
+    q->t[k] = t;
+    q->ea[k] = ea;
+    q->eb[k] = eb;
+}
+
+/* tab_eval at four arguments 0 <= x (lane by lane from H's table where h, else G's): the
+ * same operations, the coefficients gathered. */
+static inline __m256d tab_eval4(__m256d x, __m256d h)
+{
+    __m128i m = _mm256_cvttpd_epi32(_mm256_mul_pd(x, _mm256_set1_pd(64.0)));
+    m = _mm_min_epi32(m, _mm_set1_epi32(GT_N - 1));
+    __m256d mid = _mm256_mul_pd(_mm256_add_pd(_mm256_cvtepi32_pd(m), _mm256_set1_pd(0.5)),
+                                _mm256_set1_pd(GT_DU));
+    __m256d d = _mm256_sub_pd(x, mid);
+    __m128i tab = _mm256_cvttpd_epi32(_mm256_and_pd(h, _mm256_set1_pd((double)GT_N)));
+    __m128i row = _mm_mullo_epi32(_mm_add_epi32(m, tab), _mm_set1_epi32(GT_DEG + 1));
+    const double *base = &ghtab[0][0][0];
+    __m256d v = _mm256_i32gather_pd(base + GT_DEG, row, 8);
+    for (int k = GT_DEG - 1; k >= 0; k--)
+        v = _mm256_add_pd(_mm256_mul_pd(v, d), _mm256_i32gather_pd(base + k, row, 8));
+    return v;
+}
+
+/* Evaluates the queued cells four at a time, shell_cell's operations lane by lane, and
+ * puts those with a weight; a last group of fewer than four only when all (else it stays,
+ * moved to the front). */
+static void cut_flush4(cut_queue *q, const shell_consts *sc, double len, int all,
+                       dep_cursor *cur)
+{
+    int n = q->n, done = all ? n : n & ~3;
+    for (int m = n; all && (m & 3); m++) /* lanes that give 0: h^2 = R^2 */
+        cut_push(q, 0, sc->R2, sc->R2, 0.0, 0.0, 0.0);
+    const __m256d zero = _mm256_setzero_pd(), R2 = _mm256_set1_pd(sc->R2);
+    const __m256d lenv = _mm256_set1_pd(len), k = _mm256_set1_pd(sc->k);
+    const __m256d tail = _mm256_set1_pd(sc->tail), tail2 = _mm256_set1_pd(2.0 * sc->tail);
+    const __m256d scale = _mm256_set1_pd(sc->scale), shs = _mm256_set1_pd(sc->shift_scale);
+    for (int i = 0; i < done; i += 4) {
+        __m256d e = _mm256_loadu_pd(q->e + i), qb = _mm256_loadu_pd(q->qb + i);
+        __m256d t = _mm256_loadu_pd(q->t + i);
+        __m256d h2 = _mm256_sub_pd(e, _mm256_mul_pd(t, t));
+        h2 = _mm256_blendv_pd(h2, zero, _mm256_cmp_pd(h2, zero, _CMP_LT_OQ));
+        __m256d valid = _mm256_cmp_pd(h2, R2, _CMP_LT_OQ), a_in = _mm256_cmp_pd(e, R2, _CMP_LT_OQ);
+        __m256d end = _mm256_or_pd(a_in, _mm256_cmp_pd(qb, R2, _CMP_LT_OQ));
+        __m256d across = _mm256_and_pd(_mm256_cmp_pd(t, zero, _CMP_GT_OQ),
+                                       _mm256_cmp_pd(t, lenv, _CMP_LT_OQ));
+        __m256d keep = _mm256_and_pd(valid, _mm256_or_pd(end, across));
+        __m256d c = _mm256_sqrt_pd(_mm256_blendv_pd(zero, _mm256_sub_pd(R2, h2), valid));
+        /* the foot from the end inside the ball (a's when both are), its factor */
+        __m256d tp = _mm256_blendv_pd(_mm256_sub_pd(lenv, t), t, a_in);
+        __m256d e_end = _mm256_blendv_pd(_mm256_loadu_pd(q->eb + i), _mm256_loadu_pd(q->ea + i),
+                                         a_in);
+        __m256d neg = _mm256_cmp_pd(tp, zero, _CMP_LT_OQ);
+        __m256d abs_tp = _mm256_blendv_pd(tp, _mm256_xor_pd(tp, _mm256_set1_pd(-0.0)), neg);
+        __m256d T1 = tab_eval4(_mm256_and_pd(keep, _mm256_mul_pd(c, k)), _mm256_and_pd(end, neg));
+        __m256d T2 = tab_eval4(_mm256_and_pd(_mm256_and_pd(keep, end), _mm256_mul_pd(abs_tp, k)),
+                               neg);
+        __m256d sum = _mm256_add_pd(_mm256_mul_pd(tail, T1), _mm256_mul_pd(e_end, T2));
+        __m256d tails = _mm256_sub_pd(_mm256_mul_pd(e_end, T2), _mm256_mul_pd(tail, T1));
+        __m256d v = _mm256_blendv_pd(_mm256_mul_pd(tail2, T1), _mm256_blendv_pd(sum, tails, neg),
+                                     end);
+        __m256d chord = _mm256_blendv_pd(_mm256_mul_pd(_mm256_set1_pd(2.0), c),
+                                         _mm256_add_pd(tp, c), end);
+        __m256d w = _mm256_and_pd(keep, _mm256_sub_pd(_mm256_mul_pd(scale, v),
+                                                      _mm256_mul_pd(shs, chord)));
+        double wv[4];
+        _mm256_storeu_pd(wv, w);
+        for (int u = 0; u < 4 && i + u < n; u++)
+            if (wv[u] != 0.0)
+                dep_cursor_put(cur, q->cell[i + u], wv[u]);
+    }
+    int rest = n - done;
+    for (int m = 0; m < rest; m++) {
+        q->cell[m] = q->cell[done + m];
+        q->e[m] = q->e[done + m];
+        q->qb[m] = q->qb[done + m];
+        q->t[m] = q->t[done + m];
+        q->ea[m] = q->ea[done + m];
+        q->eb[m] = q->eb[done + m];
+    }
+    q->n = rest;
+}
+
+/* What row_classify4 takes, in every lane: the segment's (b_x, |b|^2, 1/|b|^2, R^2) and
+ * the row's (across x: (r - a).b, |r - a|^2, |r - b|^2, R^2 less the latter two). */
+typedef struct row_reach4 {
+    __m256d bx, l2, inv_l2, R2, tyz, qay, qby, ra, rb;
+} row_reach4;
+
+static inline row_reach4 row_reach4_at(double bx, double l2, double inv_l2, double R2)
+{
+    __m256d z = _mm256_setzero_pd();
+    return (row_reach4){_mm256_set1_pd(bx), _mm256_set1_pd(l2), _mm256_set1_pd(inv_l2),
+                        _mm256_set1_pd(R2), z, z, z, z, z};
+}
+
+static inline void row_reach4_across(row_reach4 *rr, double qay, double qby, double tyz,
+                                     double R2)
+{
+    rr->tyz = _mm256_set1_pd(tyz);
+    rr->qay = _mm256_set1_pd(qay);
+    rr->qby = _mm256_set1_pd(qby);
+    rr->ra = _mm256_set1_pd(R2 - qay);
+    rr->rb = _mm256_set1_pd(R2 - qby);
+}
+
+/* Four cells of a row (their offsets dx from a along x, squared offsets qa, qb from a and b
+ * along x): the bits of those within R of the segment (returned) and, of those, of the
+ * ones with the whole segment within R (*uncut).  With t = (r - a).b the distance^2 is
+ * |r - a|^2 for t <= 0, |r - b|^2 for t >= |b|^2, else |r - a|^2 - t^2/|b|^2; whole when
+ * (c - a_x)^2 < R^2 - |r - a|^2 across x and the same about b.  The cells past the row's
+ * end have dx = 0 and qa = qb = infinity: never within R. */
+static inline int row_classify4(const row_reach4 *rr, const double *dx, const double *qa,
+                                const double *qb, int *uncut)
+{
+    __m256d A = _mm256_loadu_pd(qa), B = _mm256_loadu_pd(qb);
+    __m256d t = _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(dx), rr->bx), rr->tyz);
+    __m256d qai = _mm256_add_pd(A, rr->qay);
+    __m256d d2 = _mm256_sub_pd(qai, _mm256_mul_pd(_mm256_mul_pd(t, t), rr->inv_l2));
+    d2 = _mm256_blendv_pd(d2, _mm256_add_pd(B, rr->qby), _mm256_cmp_pd(t, rr->l2, _CMP_GE_OQ));
+    d2 = _mm256_blendv_pd(d2, qai, _mm256_cmp_pd(t, _mm256_setzero_pd(), _CMP_LE_OQ));
+    __m256d within = _mm256_cmp_pd(d2, rr->R2, _CMP_LT_OQ);
+    __m256d whole = _mm256_and_pd(_mm256_cmp_pd(A, rr->ra, _CMP_LT_OQ),
+                                  _mm256_cmp_pd(B, rr->rb, _CMP_LT_OQ));
+    *uncut = _mm256_movemask_pd(_mm256_and_pd(within, whole));
+    return _mm256_movemask_pd(within);
+}
+
+#define SEG_FN segment_xyz_avx2
+#define SEG_AVX2 1
+#include "deposit_gauss_segment.h"
+#undef SEG_FN
+#undef SEG_AVX2
+#pragma GCC pop_options
+#endif
+
 int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const double b[3],
                             mimas_weights *ws)
 {
-    const mimas_weight *wt = dp->wt;
-    const mimas_grid *g = dp->grid;
-    double bv[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    double l2 = bv[0] * bv[0] + bv[1] * bv[1] + bv[2] * bv[2], len = sqrt(l2);
-    double R = mimas_weight_reach(wt), R2 = wt->reach2, kap = wt->inv2w2;
-    if (!(len > 0) || wt->cutoff > 5.0)
-        return -1;
-    /* the cells within R of the segment's bounding box */
-    int lo[3], hi[3], n[3];
-    for (int d = 0; d < 3; d++) {
-        double lo_d = a[d] < b[d] ? a[d] : b[d], hi_d = a[d] < b[d] ? b[d] : a[d];
-        if (!dep_index_range(dp, d, lo_d - R, hi_d + R, &lo[d], &hi[d]))
-            return MIMAS_OK;
-        n[d] = hi[d] - lo[d] + 1;
-    }
-    const double *xs, *wsg;
-    int pieces, per = line_rule(len / wt->w, wt->cutoff, &xs, &wsg, &pieces);
-    int nq = per * pieces, nqp = (nq + 3) & ~3, n0p = (n[0] + 3) & ~3;
-    if (nq > SEG_MAXNODE)
-        return -1;
-    double tau0 = 0.0; /* d_0.b */
-    for (int d = 0; d < 3; d++)
-        tau0 += (dep_centre(dp, d, lo[d]) - a[d]) * bv[d];
-    /* the largest exponent of the factors: beyond the range of doubles, cell by cell */
-    double big = fabs(2.0 * tau0 * kap) + l2 * kap;
-    for (int d = 0; d < 3; d++) {
-        double d0 = dep_centre(dp, d, lo[d]) - a[d];
-        big += fabs(2.0 * bv[d] * dp->h[d] * kap) * n[d] + fabs(2.0 * bv[d] * d0 * kap);
-    }
-    if (big > 600.0)
-        return -1;
-    if (mimas_weights_reserve(ws, (size_t)n[0] * n[1] * n[2]))
-        return MIMAS_EIO;
-    /* per direction: offsets from a, squared offsets from a and b, the Gaussian factors
-     * about a and b; the nodes' powers X^i: x node-major (rows padded to 4), y and z
-     * node-minor; the row's sums; the row scalars of a plane (plane_rows_at) */
-    size_t total = (size_t)n[0] + n[1] + n[2];
-    int n1p = (n[1] + 3) & ~3;
-    size_t nbuf = 5 * total + (size_t)nqp * ((size_t)n0p + n[1] + n[2]) + (size_t)n0p +
-                  5 * (size_t)n1p;
-    double *buf = mimas_weights_scratch(ws, nbuf);
-    if (!buf)
-        return MIMAS_EIO;
-    double *dx[3], *qa[3], *qb[3], *ea[3], *eb[3];
-    double sq[SEG_MAXNODE], wq[SEG_MAXNODE], eyz[SEG_MAXNODE];
-    for (int p = 0, k = 0; p < pieces; p++)
-        for (int m = 0; m < per; m++, k++) {
-            gl_node(xs, wsg, per, m, (double)p / pieces, (double)(p + 1) / pieces, &sq[k], &wq[k]);
-            wq[k] *= exp((2.0 * sq[k] * tau0 - sq[k] * sq[k] * l2) * kap);
-        }
-    for (int k = nq; k < nqp; k++)
-        sq[k] = wq[k] = 0.0;
-    double *ex0 = buf + 5 * total, *exy = ex0 + (size_t)nqp * n0p, *exz = exy + (size_t)nqp * n[1];
-    double *restrict vrow = exz + (size_t)nqp * n[2];
-    double *pbuf = vrow + n0p;
-    plane_rows pr = {pbuf, pbuf + n1p, pbuf + 2 * n1p, pbuf + 3 * n1p, pbuf + 4 * n1p};
-    for (int d = 0, o = 0; d < 3; d++) {
-        dx[d] = buf + o;
-        qa[d] = buf + total + o;
-        qb[d] = buf + 2 * total + o;
-        ea[d] = buf + 3 * total + o;
-        eb[d] = buf + 4 * total + o;
-        for (int i = 0; i < n[d]; i++) {
-            double c = dep_centre(dp, d, lo[d] + i), da = c - a[d], db = c - b[d];
-            dx[d][i] = da;
-            qa[d][i] = da * da;
-            qb[d][i] = db * db;
-        }
-        gauss_row(dp, d, lo[d], n[d], a[d], ea[d]);
-        /* X(s) for the node pairs s = c_p -+ x_m of each piece p: e^{c_p beta} e^{-+x_m beta},
-         * one exponential per piece and per pair */
-        double beta = 2.0 * bv[d] * dp->h[d] * kap, X[SEG_MAXNODE];
-        int half = per / 2;
-        for (int p = 0; p < pieces; p++) {
-            double cp = exp((p + 0.5) / pieces * beta);
-            for (int m = 0; m < half; m++) {
-                double xm = exp(0.5 / pieces * xs[m] * beta);
-                X[p * per + m] = cp / xm;        /* gl_node: the first half are the -x_m */
-                X[p * per + half + m] = cp * xm;
-            }
-        }
-        for (int k = nq; k < nqp; k++)
-            X[k] = 0.0;
-        node_powers(X, nqp, n[d], d == 0 ? n0p : 0, d == 0 ? ex0 : (d == 1 ? exy : exz));
-        gauss_row(dp, d, lo[d], n[d], b[d], eb[d]);
-        o += n[d];
-    }
-    dep_cursor cur = dep_cursor_at(ws);
-    double coef = wt->coef, sh = coef * wt->shift, pyz = bv[1] * bv[1] + bv[2] * bv[2];
-    double inv_l2 = 1.0 / l2, inv_len = 1.0 / len, inv_pyz = pyz > 0 ? 1.0 / pyz : 0.0;
-    shell_consts sc = {R2, 1.0 / (M_SQRT2 * wt->w), wt->tail,
-                       coef * sqrt(M_PI / 2.0) * wt->w / len, coef * wt->shift / len};
-    for (int kz = 0; kz < n[2]; kz++) {
-        size_t plane = (size_t)lo[0] + (size_t)g->n[0] * (size_t)g->n[1] * (size_t)(lo[2] + kz);
-        plane_rows_at(dx[1], qa[1], qb[1], dx[2][kz], qa[2][kz], qb[2][kz], bv, inv_pyz, n1p, &pr);
-        for (int j = 0; j < n[1]; j++) {
-            /* the row (a line along x) is out of reach when the segment's projection
-             * on the y-z plane stays R or more from the row's (y, z) */
-            if (pr.rr[j] >= R2)
-                continue;
-            double qay = pr.qay[j], qby = pr.qby[j], tyz = pr.tyz[j], ty = pr.ty[j];
-            size_t row = plane + (size_t)g->n[0] * (size_t)(lo[1] + j);
-            /* The cells within R of the segment form an interval of the row (the
-             * distance to a segment is convex along a line), holding the point nearest
-             * to the segment, x = a + ty b: walk out from the cells on either side of
-             * it.  The cells with the whole segment within R (the two balls'
-             * intersection) are an interval inside it. */
-            row_geom rg = {qa[0], qb[0], dx[0], qay, qby, tyz, bv[0], l2, inv_l2, R2};
-            int c0, c1;
-            if (!reach_span(&rg, (ty * bv[0] - dx[0][0]) / dp->h[0], n[0], &c0, &c1))
-                continue;
-            double ra = R2 - qay, rb = R2 - qby;
-            int i0 = c0, i1 = c1;
-            while (i0 <= i1 && !(qa[0][i0] < ra && qb[0][i0] < rb))
-                i0++;
-            while (i1 >= i0 && !(qa[0][i1] < ra && qb[0][i1] < rb))
-                i1--;
-            if (i0 <= i1) {
-                /* the uncut line integral, 4 cells at a time over the nodes */
-                const double *ey = exy + (size_t)j * nqp, *ez = exz + (size_t)kz * nqp;
-                for (int k = 0; k < nqp; k++)
-                    eyz[k] = wq[k] * ey[k] * ez[k];
-                node_sums(ex0, (size_t)n0p, eyz, nq, i0 & ~3, (i1 + 4) & ~3, vrow);
-                double ayz = coef * ea[1][j] * ea[2][kz];
-                for (int i = i0; i <= i1; i++)
-                    dep_cursor_put(&cur, row + (size_t)i, ayz * ea[0][i] * vrow[i] - sh);
-            } else {
-                i0 = c1 + 1; /* no such cells: every cell of [c0, c1] is cut */
-                i1 = c1;
-            }
-            /* the others, where the cut ball cuts the segment: [c0, i0) and (i1, c1] */
-            double ebyz = eb[1][j] * eb[2][kz], eayz = ea[1][j] * ea[2][kz];
-            for (int i = c0; i <= c1; i++) {
-                if (i == i0) {
-                    i = i1;
-                    continue;
-                }
-                double qai = qa[0][i] + qay, qbi = qb[0][i] + qby;
-                double t = dx[0][i] * bv[0] + tyz;
-                double v = shell_cell(&sc, qai < R2, qbi < R2, t * inv_len, qai, len,
-                                      ea[0][i] * eayz, eb[0][i] * ebyz);
-                if (v != 0.0)
-                    dep_cursor_put(&cur, row + (size_t)i, v);
-            }
-        }
-    }
-    dep_cursor_done(ws, &cur);
-    return MIMAS_OK;
+#if MIMAS_X86_DISPATCH
+    if (__builtin_cpu_supports("avx2"))
+        return segment_xyz_avx2(dp, a, b, ws);
+#endif
+    return mimas_gauss_segment_xyz_portable(dp, a, b, ws);
 }
 
 void mimas_gauss_tables(void)

@@ -10,8 +10,12 @@
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
     __GNUC__ >= 6
 #define MIMAS_SIMD __attribute__((target_clones("avx2", "default")))
+/* the same processors: a function built twice, once under #pragma GCC target("avx2")
+ * with its intrinsics, chosen by __builtin_cpu_supports (deposit_gauss.c) */
+#define MIMAS_X86_DISPATCH 1
 #else
 #define MIMAS_SIMD
+#define MIMAS_X86_DISPATCH 0
 #endif
 
 /* v4d: four doubles in one register where the compiler has vector types (GCC,

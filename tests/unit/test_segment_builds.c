@@ -1,0 +1,139 @@
+/* The Gaussian line integral on x-y-z grids is built twice (averaging/deposit_gauss.c): for
+ * any processor, and with AVX2, which classifies a row's cells and evaluates the cells the
+ * cut ball cuts four at a time.  The two must give the same weights to the bit, cell for
+ * cell: random segments of every kind (short and long ones, along an axis, across the
+ * grid's edges and its shorter last cell, a periodic box's images), for the plain and the
+ * shifted Gaussian, cutoffs 3 to 5 and widths from half to twice the cell size.  The
+ * portable build is the one the deposits' own tests check against independent
+ * integrals (test_mercurycg, test_average). */
+#include <config.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "deposit.h"
+#include "deposit_impl.h"
+#include "simd.h"
+
+typedef struct entry {
+    size_t cell;
+    double w;
+} entry;
+
+static int by_cell(const void *x, const void *y)
+{
+    const entry *a = x, *b = y;
+    return a->cell < b->cell ? -1 : a->cell > b->cell;
+}
+
+/* The list's entries sorted by cell (the builds put them in different orders). */
+static entry *sorted(const mimas_weights *ws)
+{
+    entry *e = malloc((ws->n ? ws->n : 1) * sizeof *e);
+    assert_non_null(e);
+    for (size_t k = 0; k < ws->n; k++)
+        e[k] = (entry){ws->cell[k], ws->w[k]};
+    qsort(e, ws->n, sizeof *e, by_cell);
+    return e;
+}
+
+/* n random segments on the grid with the weight: the dispatched build against the
+ * portable one; returns how many weights were compared. */
+static size_t compare_builds(const char *grid, const char *weight, int periodic, int n,
+                             unsigned long seed)
+{
+    mimas_grid g;
+    mimas_weight wt;
+    mimas_error err;
+    assert_int_equal(mimas_grid_parse(&g, grid, NULL, &err), 0);
+    assert_int_equal(mimas_weight_parse(&wt, weight, &err), 0);
+    mimas_box box = {{0, 0, 0}, {0.01, 0.012, 0.009}, 0, 0, 0, {periodic, periodic, periodic}};
+    mimas_deposit dp;
+    mimas_deposit_init(&dp, &g, &wt, &box, 0);
+    assert_true(dp.gauss_xyz);
+    mimas_gauss_tables();
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(rng, seed);
+    mimas_weights w1, w2;
+    memset(&w1, 0, sizeof w1);
+    memset(&w2, 0, sizeof w2);
+    size_t compared = 0;
+    for (int k = 0; k < n; k++) {
+        double a[3], b[3], len;
+        int kind = k % 5;
+        /* lengths from a hundredth of the width to four widths */
+        len = wt.w * (kind == 0 ? 0.01 + 0.2 * gsl_rng_uniform(rng)
+                                : (kind == 4 ? 2.0 + 2.0 * gsl_rng_uniform(rng)
+                                             : 0.3 + 1.5 * gsl_rng_uniform(rng)));
+        for (int d = 0; d < 3; d++)
+            a[d] = box.lo[d] - 0.001 + (box.hi[d] - box.lo[d] + 0.002) * gsl_rng_uniform(rng);
+        double dir[3] = {gsl_ran_ugaussian(rng), gsl_ran_ugaussian(rng), gsl_ran_ugaussian(rng)};
+        if (kind == 1) /* along an axis, and in a plane of two */
+            dir[k / 5 % 3] = dir[(k / 5 + 1) % 3] = 0.0;
+        if (kind == 2)
+            dir[k / 5 % 3] = 0.0;
+        double norm = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+        if (!(norm > 0))
+            dir[0] = norm = 1.0;
+        for (int d = 0; d < 3; d++)
+            b[d] = a[d] + len * dir[d] / norm;
+        w1.n = w2.n = 0;
+        int r1 = mimas_gauss_segment_xyz(&dp, a, b, &w1);
+        int r2 = mimas_gauss_segment_xyz_portable(&dp, a, b, &w2);
+        assert_int_equal(r1, r2);
+        assert_int_equal(w1.n, w2.n);
+        entry *e1 = sorted(&w1), *e2 = sorted(&w2);
+        for (size_t m = 0; m < w1.n; m++) {
+            assert_int_equal(e1[m].cell, e2[m].cell);
+            if (memcmp(&e1[m].w, &e2[m].w, sizeof(double)) != 0)
+                fail_msg("%s %s segment %d cell %zu: %.17g != %.17g", grid, weight, k, e1[m].cell,
+                         e1[m].w, e2[m].w);
+        }
+        compared += w1.n;
+        free(e1);
+        free(e2);
+    }
+    mimas_weights_free(&w1);
+    mimas_weights_free(&w2);
+    gsl_rng_free(rng);
+    return compared;
+}
+
+static void test_builds_agree(void **state)
+{
+    (void)state;
+#if MIMAS_X86_DISPATCH
+    if (!__builtin_cpu_supports("avx2"))
+        skip(); /* one build only: nothing to compare */
+#else
+    skip();
+#endif
+    /* cells of 1 mm (the last ones shorter: 10, 12, 9 mm over 10.5, 11.3, 9.7 cells) */
+    const char *grid = "x=0:0.01:10,y=0:0.012:11,z=0:0.009:10";
+    const char *weights[] = {"gauss:w=0.001",          "gauss:w=0.001,shift",
+                             "gauss:w=0.0007,cutoff=4", "gauss:w=0.0005,cutoff=5",
+                             "gauss:w=0.002",          "gauss:w=0.0012,cutoff=3.5,shift"};
+    size_t total = 0;
+    for (size_t k = 0; k < sizeof weights / sizeof weights[0]; k++) {
+        total += compare_builds(grid, weights[k], 0, 400, 11 + k);
+        total += compare_builds(grid, weights[k], 1, 200, 101 + k);
+    }
+    /* a coarse grid: rows of fewer than four cells */
+    total += compare_builds("x=0:0.01:3,y=0:0.012:2,z=0:0.009:3", "gauss:w=0.002", 0, 300, 7);
+    assert_true(total > 100000); /* enough cells, cut and uncut, to mean something */
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_builds_agree),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
