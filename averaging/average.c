@@ -277,10 +277,11 @@ static void add_particle(double *S0, const mimas_weights *ws, const particle_val
     }
 }
 
+/* A contact's 16 sums, S_C..S_W (fields.h), four at a time. */
 MIMAS_SIMD
 static void add_contact(double *restrict S0, const mimas_weights *ws, const double *qin)
 {
-    double q[18];
+    double q[16];
     memcpy(q, qin, sizeof q);
     const size_t *cell = ws->cell;
     const double *wv = ws->w;
@@ -295,10 +296,8 @@ static void add_contact(double *restrict S0, const mimas_weights *ws, const doub
         *(v4d *)(S + 4) += q1 * w;
         *(v4d *)(S + 8) += q2 * w;
         *(v4d *)(S + 12) += q3 * w;
-        S[16] += q[16] * w;
-        S[17] += q[17] * w;
 #else
-        for (int m = 0; m < 18; m++)
+        for (int m = 0; m < 16; m++)
             S[m] += q[m] * w;
 #endif
     }
@@ -316,12 +315,17 @@ static int deposit_branch(const mimas_deposit *dp, const mimas_grid *g, double *
     to_local(&B, f, fl);
     to_local(&B, b, bl);
     double len = sqrt(bl[0] * bl[0] + bl[1] * bl[1] + bl[2] * bl[2]);
-    double q[18]; /* f (x) b and n (x) n in the local basis: S_C, S_F */
+    /* f (x) b and n (x) n (xx yy zz xy xz yz) in the local basis, and S_F's 0: S_C, S_F */
+    static const int fab[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
+    double q[16];
     for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
+        for (int j = 0; j < 3; j++)
             q[3 * i + j] = fl[i] * bl[j];
-            q[9 + 3 * i + j] = len > 0 ? bl[i] * bl[j] / (len * len) : 0.0;
-        }
+    for (int k = 0; k < 6; k++) {
+        int i = fab[k][0], j = fab[k][1];
+        q[9 + k] = len > 0 ? bl[i] * bl[j] / (len * len) : 0.0;
+    }
+    q[15] = 0.0;
     double to[3] = {from[0] + b[0], from[1] + b[1], from[2] + b[2]};
     ws->n = 0;
     if (mimas_deposit_segment(dp, from, to, ws))

@@ -153,7 +153,8 @@ void mimas_fields_derive(const double *S, int cylindrical, double r, mimas_field
     out[F_T] = ratio(K[0] + K[4] + K[8], 3.0 * S[S_N]);
     out[F_Z] = ratio(S[S_Z], S[S_N]);
     out[F_ZNR] = ratio(S[S_ZN], S[S_NN]);
-    sym6(&S[S_F], &out[F_FABRIC]);
+    for (int k = 0; k < 6; k++)
+        out[F_FABRIC + k] = S[S_F + k];
     out[F_D] = ratio(S[S_D], S[S_N]);
     for (int k = 0; k < 3; k++)
         out[F_WALL + k] = S[S_W + k];
