@@ -8,6 +8,7 @@
 
 #include <math.h>
 #include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -538,6 +539,35 @@ static void cut_flush4(cut_queue *q, const shell_consts *sc, double len, int all
         q->eb[m] = q->eb[done + m];
     }
     q->n = rest;
+}
+
+/* Puts the cells of the bits of m (of the four from cell `first`): ayz ea vrow - sh, the
+ * weights of uncut cells, four at a time; the selected lanes moved to the front (a
+ * permutation per mask) and all four written, the cursor moved on by those selected (the
+ * list has room for 4 more than its cells). */
+static const int32_t put4_perm[16][8] = {
+    {0, 1, 2, 3, 4, 5, 6, 7}, {0, 1, 2, 3, 4, 5, 6, 7}, {2, 3, 0, 1, 4, 5, 6, 7},
+    {0, 1, 2, 3, 4, 5, 6, 7}, {4, 5, 0, 1, 2, 3, 6, 7}, {0, 1, 4, 5, 2, 3, 6, 7},
+    {2, 3, 4, 5, 0, 1, 6, 7}, {0, 1, 2, 3, 4, 5, 6, 7}, {6, 7, 0, 1, 2, 3, 4, 5},
+    {0, 1, 6, 7, 2, 3, 4, 5}, {2, 3, 6, 7, 0, 1, 4, 5}, {0, 1, 2, 3, 6, 7, 4, 5},
+    {4, 5, 6, 7, 0, 1, 2, 3}, {0, 1, 4, 5, 6, 7, 2, 3}, {2, 3, 4, 5, 6, 7, 0, 1},
+    {0, 1, 2, 3, 4, 5, 6, 7}};
+
+static inline void put4(dep_cursor *cur, size_t first, int m, double ayz, const double *ea,
+                        const double *vrow, double sh)
+{
+    __m256d w = _mm256_sub_pd(_mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(ayz),
+                                                          _mm256_loadu_pd(ea)),
+                                            _mm256_loadu_pd(vrow)),
+                              _mm256_set1_pd(sh));
+    __m256i cell = _mm256_add_epi64(_mm256_set1_epi64x((long long)first),
+                                    _mm256_setr_epi64x(0, 1, 2, 3));
+    __m256i p = _mm256_loadu_si256((const __m256i *)put4_perm[m]);
+    _mm256_storeu_pd(cur->w, _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(w), p)));
+    _mm256_storeu_si256((__m256i *)cur->cell, _mm256_permutevar8x32_epi32(cell, p));
+    int k = __builtin_popcount((unsigned)m);
+    cur->w += k;
+    cur->cell += k;
 }
 
 /* What row_classify4 takes, in every lane: the segment's (b_x, |b|^2, 1/|b|^2, R^2) and

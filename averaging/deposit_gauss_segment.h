@@ -44,7 +44,7 @@ int SEG_FN(const mimas_deposit *dp, const double a[3], const double b[3], mimas_
     }
     if (big > 600.0)
         return -1;
-    if (mimas_weights_reserve(ws, (size_t)n[0] * n[1] * n[2]))
+    if (mimas_weights_reserve(ws, (size_t)n[0] * n[1] * n[2] + 4)) /* + 4: put4 */
         return MIMAS_EIO;
     /* per direction: offsets from a, squared offsets from a and b, the Gaussian factors
      * about a and b; the nodes' powers X^i: x node-major (rows padded to 4), y and z
@@ -91,7 +91,7 @@ int SEG_FN(const mimas_deposit *dp, const double a[3], const double b[3], mimas_
             qb[d][i] = db * db;
         }
         for (int i = n[d]; d == 0 && i < n0p; i++) { /* never within R: see row_classify4 */
-            dx[d][i] = 0.0;
+            dx[d][i] = ea[d][i] = eb[d][i] = 0.0;
             qa[d][i] = qb[d][i] = INFINITY;
         }
         gauss_row(dp, d, lo[d], n[d], a[d], ea[d]);
@@ -153,10 +153,7 @@ int SEG_FN(const mimas_deposit *dp, const double a[3], const double b[3], mimas_
                     }
                     /* the uncut line integral of the four cells over the nodes */
                     node_sums(ex0, (size_t)n0p, eyz, nq, c, c + 4, vrow);
-                    for (int u = uncut; u; u &= u - 1) {
-                        int i = c + __builtin_ctz((unsigned)u);
-                        dep_cursor_put(&cur, row + (size_t)i, ayz * ea[0][i] * vrow[i] - sh);
-                    }
+                    put4(&cur, row + (size_t)c, uncut, ayz, ea[0] + c, vrow + c, sh);
                 }
                 for (int u = in & ~uncut; u; u &= u - 1) {
                     int i = c + __builtin_ctz((unsigned)u);
