@@ -108,6 +108,10 @@ int mimas_gauss_sphere_rz(const mimas_deposit *dp, const double a[3], int with_g
                           double scale, mimas_weights *ws);
 int mimas_gauss_segment_rz(const mimas_deposit *dp, const double aa[3], const double ab[3],
                            const double am[3], double reach, double scale, mimas_weights *ws);
+/* The same built for any processor (its AVX2 build gives the same weights to the bit). */
+int mimas_gauss_segment_rz_portable(const mimas_deposit *dp, const double aa[3],
+                                    const double ab[3], const double am[3], double reach,
+                                    double scale, mimas_weights *ws);
 /* The Gauss-Legendre rule along a segment of length len for the azimuthal average: 4, 8
  * or 16 points for segments up to w/2, 2w or longer (the kernel varies on the scale w;
  * Lucy's on c/3).  Returns n and sets its nodes and weights (gauss_legendre.h). */

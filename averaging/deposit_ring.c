@@ -16,6 +16,10 @@
 #include "ring_tables.h"
 #include "simd.h"
 
+#if MIMAS_X86_DISPATCH
+#include <immintrin.h>
+#endif
+
 /* The average at the ring (r, z-offset dz) given (r - rho)^2. */
 static double ring_value(const mimas_weight *wt, double r, double rho, double dz, double dr2,
                          double grad[2])
@@ -95,113 +99,56 @@ typedef long long ring_m4 __attribute__((vector_size(32)));
 /* m ? a : b lane by lane (m from a comparison: all ones or zero) */
 #define RING_SEL(m, a, b) ((ring_v4)(((ring_m4)(a) & (m)) | ((ring_m4)(b) & ~(m))))
 
-static inline void ring_lanes(const mimas_deposit *dp, const double *dr2, const double *dz,
-                              const double *irr, double *val, double *y, int *flag)
+#define RING_LANES_FN ring_lanes
+#define RING_SEG_FN mimas_gauss_segment_rz_portable
+#define RING_AVX2 0
+#include "deposit_ring_segment.h"
+#undef RING_LANES_FN
+#undef RING_SEG_FN
+#undef RING_AVX2
+
+#if MIMAS_X86_DISPATCH
+#pragma GCC push_options
+#pragma GCC target("avx2")
+
+/* ring_m_half_at at four points (X >= 0, taken as RING_XMAX beyond it), lane by lane the
+ * same operations, the coefficients gathered. */
+static inline __m256d ring_m_half4(__m256d X)
 {
-    const mimas_weight *wt = dp->wt;
-    ring_v4 D2, Z, IR, zero = {0, 0, 0, 0}, one = zero + 1.0;
-    memcpy(&D2, dr2, sizeof D2);
-    memcpy(&Z, dz, sizeof Z);
-    memcpy(&IR, irr, sizeof IR);
-    ring_v4 e = wt->reach2 - (D2 + Z * Z), tiny = zero + 1e-20;
-    ring_m4 in = e > zero;
-    /* at least 1e-20 where positive: their powers stay normal numbers (a power
-     * below 1e-220 changes nothing) */
-    ring_v4 X = e * wt->inv2w2, Y = e * IR;
-    X = RING_SEL(in, RING_SEL(X > tiny, X, tiny), zero);
-    Y = RING_SEL(in, RING_SEL(Y > tiny, Y, tiny), zero);
-    ring_v4 IA = IR / wt->inv2w2; /* 1/a, a = 4 r rho/2w^2 */
-    ring_m4 fl = in & ((Y > RING_LANE_Y) | (IA > 1.0 / (4.0 * (RING_LANE_N + 2))) |
-                       (X > (double)RING_XMAX));
-    ring_v4 T0;
-    for (int l = 0; l < 4; l++)
-        T0[l] = ring_m_half_at(X[l] < RING_XMAX ? X[l] : RING_XMAX); /* fmin, inline */
-    ring_v4 U = wt->tail * T0, xn = zero + wt->tail, ian = one,
-            yn = one, s0 = zero, sa = zero;
-    for (int n = 0; n <= RING_LANE_N; n++) {
-        ring_v4 next = (n + 0.5) * U - xn;
-        s0 += ring_binom[n] * ian * U;
-        sa += 0.5 * ring_binom[n] * ring_inv_half[n] * yn; /* c_n/(2n + 1) */
-        U = next;
-        ian *= IA;
-        xn *= X;
-        yn *= Y;
-    }
-    ring_v4 V = s0 - 2.0 * wt->shift * sa;
-    V = RING_SEL(in & ~fl, V, zero);
-    memcpy(val, &V, sizeof V);
-    memcpy(y, &Y, sizeof Y);
-    for (int l = 0; l < 4; l++)
-        flag[l] = fl[l] != 0;
+    X = _mm256_min_pd(X, _mm256_set1_pd(RING_XMAX));
+    __m128i m = _mm256_cvttpd_epi32(_mm256_mul_pd(X, _mm256_set1_pd(RING_STEP)));
+    m = _mm_min_epi32(m, _mm_set1_epi32(RING_STEP * RING_XMAX - 1));
+    __m256d mid = _mm256_div_pd(_mm256_add_pd(_mm256_cvtepi32_pd(m), _mm256_set1_pd(0.5)),
+                                _mm256_set1_pd(RING_STEP));
+    __m256d t = _mm256_sub_pd(X, mid), t2 = _mm256_mul_pd(t, t);
+    __m128i row = _mm_mullo_epi32(m, _mm_set1_epi32(RING_DEG + 1));
+    const double *base = &ring_m_half[0][0];
+    __m256d c[RING_DEG + 1];
+    for (int k = 0; k <= RING_DEG; k++)
+        c[k] = _mm256_i32gather_pd(base + k, row, 8);
+    __m256d lo = _mm256_add_pd(_mm256_add_pd(c[0], _mm256_mul_pd(c[1], t)),
+                               _mm256_mul_pd(t2, _mm256_add_pd(c[2], _mm256_mul_pd(c[3], t))));
+    __m256d hi = _mm256_add_pd(_mm256_add_pd(c[4], _mm256_mul_pd(c[5], t)),
+                               _mm256_mul_pd(t2, _mm256_add_pd(c[6], _mm256_mul_pd(c[7], t))));
+    return _mm256_add_pd(lo, _mm256_mul_pd(_mm256_mul_pd(t2, t2), hi));
 }
 
-MIMAS_SIMD
+#define RING_LANES_FN ring_lanes_avx2
+#define RING_SEG_FN segment_rz_avx2
+#define RING_AVX2 1
+#include "deposit_ring_segment.h"
+#undef RING_LANES_FN
+#undef RING_SEG_FN
+#undef RING_AVX2
+#pragma GCC pop_options
+#endif
+
 int mimas_gauss_segment_rz(const mimas_deposit *dp, const double aa[3], const double ab[3],
                            const double am[3], double reach, double scale, mimas_weights *ws)
 {
-    const mimas_weight *wt = dp->wt;
-    int lo[3], hi[3], ok;
-    ws->has_grad = 0;
-    if (cell_box(dp, am, reach, lo, hi, ws, &ok) || !ok)
-        return ok ? MIMAS_EIO : MIMAS_OK;
-    double b[3] = {ab[0] - aa[0], ab[1] - aa[1], ab[2] - aa[2]};
-    const double *xs, *wsg;
-    int n = dep_ring_rule(wt, sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]), &xs, &wsg);
-    int nr = hi[0] - lo[0] + 1, nz = hi[2] - lo[2] + 1;
-    /* per branch point q: rho_q, z_q, its weight; per column and point: the offset's
-     * square and 1/(4 r rho) (0 on the axis: flagged); per row and point: the offset */
-    double *t = mimas_weights_scratch(ws, 3 * (size_t)n + nr + (size_t)n * (2 * nr + nz));
-    if (!t)
-        return MIMAS_EIO;
-    double *rho = t, *zq = t + n, *wq = t + 2 * n, *rc = t + 3 * n, *dr2 = rc + nr;
-    double *irr = dr2 + (size_t)n * nr, *dz = irr + (size_t)n * nr;
-    for (int q = 0; q < n; q++) {
-        double s, p[3];
-        gl_node(xs, wsg, n, q, 0.0, 1.0, &s, &wq[q]);
-        for (int m = 0; m < 3; m++)
-            p[m] = aa[m] + s * b[m];
-        rho[q] = hypot(p[0], p[1]);
-        zq[q] = p[2];
-    }
-    for (int i = 0; i < nr; i++) {
-        rc[i] = dep_centre(dp, 0, lo[0] + i);
-        for (int q = 0; q < n; q++) {
-            double rr = 4.0 * rc[i] * rho[q];
-            dr2[i * n + q] = (rc[i] - rho[q]) * (rc[i] - rho[q]);
-            irr[i * n + q] = rr > 0 ? 1.0 / rr : INFINITY;
-        }
-    }
-    for (int j = 0; j < nz; j++) {
-        double zc = dep_centre(dp, 2, lo[2] + j);
-        for (int q = 0; q < n; q++)
-            dz[j * n + q] = zc - zq[q];
-    }
-    int idx[3] = {0, lo[1], 0};
-    double norm = wt->coef / M_PI, R2 = wt->reach2;
-    for (int j = 0; j < nz; j++)
-        for (int i = 0; i < nr; i++) {
-            double sum = 0.0;
-            for (int q = 0; q < n; q += 4) {
-                double val[4], y[4];
-                int flag[4];
-                const double *d2 = dr2 + i * n + q, *z = dz + j * n + q, *ir = irr + i * n + q;
-                int any = 0;
-                for (int l = 0; l < 4; l++)
-                    any |= d2[l] + z[l] * z[l] < R2;
-                if (!any)
-                    continue;
-                ring_lanes(dp, d2, z, ir, val, y, flag);
-                for (int l = 0; l < 4; l++) {
-                    double v = flag[l] ? ring_value(wt, rc[i], rho[q + l], z[l], d2[l], NULL)
-                                       : (val[l] != 0.0 ? norm * sqrt(y[l]) * val[l] : 0.0);
-                    sum += wq[q + l] * v;
-                }
-            }
-            if (sum == 0.0)
-                continue;
-            idx[0] = lo[0] + i;
-            idx[2] = lo[2] + j;
-            dep_put(ws, mimas_grid_index(dp->grid, idx), sum * scale);
-        }
-    return MIMAS_OK;
+#if MIMAS_X86_DISPATCH
+    if (__builtin_cpu_supports("avx2"))
+        return segment_rz_avx2(dp, aa, ab, am, reach, scale, ws);
+#endif
+    return mimas_gauss_segment_rz_portable(dp, aa, ab, am, reach, scale, ws);
 }

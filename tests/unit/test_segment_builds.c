@@ -1,11 +1,12 @@
-/* The Gaussian line integral on x-y-z grids is built twice (averaging/deposit_gauss.c): for
- * any processor, and with AVX2, which classifies a row's cells and evaluates the cells the
- * cut ball cuts four at a time.  The two must give the same weights to the bit, cell for
- * cell: random segments of every kind (short and long ones, along an axis, across the
- * grid's edges and its shorter last cell, a periodic box's images), for the plain and the
- * shifted Gaussian, cutoffs 3 to 5 and widths from half to twice the cell size.  The
- * portable build is the one the deposits' own tests check against independent
- * integrals (test_mercurycg, test_average). */
+/* The Gaussian line integrals are built twice: for any processor, and with AVX2.  On x-y-z
+ * grids (averaging/deposit_gauss.c) the AVX2 build classifies a row's cells and evaluates
+ * the cells the cut ball cuts four at a time; on r-z grids (averaging/deposit_ring.c) its
+ * lanes read the table of M_{1/2} four at a time.  The two builds must give the same
+ * weights to the bit, cell for cell: random segments of every kind (short and long ones,
+ * along an axis, across the grid's edges and its shorter last cell, near the axis), for the
+ * plain and the shifted Gaussian, cutoffs 3 to 5 and widths from half to twice the cell
+ * size.  The portable builds are the ones the deposits' own tests check against
+ * independent integrals (test_mercurycg, test_average, test_weight). */
 #include <config.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -15,6 +16,7 @@
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -44,6 +46,22 @@ static entry *sorted(const mimas_weights *ws)
     return e;
 }
 
+/* The two lists hold the same cells with the same weights to the bit. */
+static void assert_same(const mimas_weights *w1, const mimas_weights *w2, const char *what,
+                        int k)
+{
+    assert_int_equal(w1->n, w2->n);
+    entry *e1 = sorted(w1), *e2 = sorted(w2);
+    for (size_t m = 0; m < w1->n; m++) {
+        assert_int_equal(e1[m].cell, e2[m].cell);
+        if (memcmp(&e1[m].w, &e2[m].w, sizeof(double)) != 0)
+            fail_msg("%s segment %d cell %zu: %.17g != %.17g", what, k, e1[m].cell, e1[m].w,
+                     e2[m].w);
+    }
+    free(e1);
+    free(e2);
+}
+
 /* n random segments on the grid with the weight: the dispatched build against the
  * portable one; returns how many weights were compared. */
 static size_t compare_builds(const char *grid, const char *weight, int periodic, int n,
@@ -57,7 +75,7 @@ static size_t compare_builds(const char *grid, const char *weight, int periodic,
     mimas_box box = {{0, 0, 0}, {0.01, 0.012, 0.009}, 0, 0, 0, {periodic, periodic, periodic}};
     mimas_deposit dp;
     mimas_deposit_init(&dp, &g, &wt, &box, 0);
-    assert_true(dp.gauss_xyz);
+    assert_true(dp.gauss_xyz || dp.gauss_rz);
     mimas_gauss_tables();
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     gsl_rng_set(rng, seed);
@@ -85,20 +103,21 @@ static size_t compare_builds(const char *grid, const char *weight, int periodic,
         for (int d = 0; d < 3; d++)
             b[d] = a[d] + len * dir[d] / norm;
         w1.n = w2.n = 0;
-        int r1 = mimas_gauss_segment_xyz(&dp, a, b, &w1);
-        int r2 = mimas_gauss_segment_xyz_portable(&dp, a, b, &w2);
-        assert_int_equal(r1, r2);
-        assert_int_equal(w1.n, w2.n);
-        entry *e1 = sorted(&w1), *e2 = sorted(&w2);
-        for (size_t m = 0; m < w1.n; m++) {
-            assert_int_equal(e1[m].cell, e2[m].cell);
-            if (memcmp(&e1[m].w, &e2[m].w, sizeof(double)) != 0)
-                fail_msg("%s %s segment %d cell %zu: %.17g != %.17g", grid, weight, k, e1[m].cell,
-                         e1[m].w, e2[m].w);
+        int r1, r2;
+        if (dp.gauss_xyz) {
+            r1 = mimas_gauss_segment_xyz(&dp, a, b, &w1);
+            r2 = mimas_gauss_segment_xyz_portable(&dp, a, b, &w2);
+        } else {
+            double m[3] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
+            double reach = 0.5 * len + mimas_weight_reach(&wt);
+            r1 = mimas_gauss_segment_rz(&dp, a, b, m, reach, dp.inv_extent, &w1);
+            r2 = mimas_gauss_segment_rz_portable(&dp, a, b, m, reach, dp.inv_extent, &w2);
         }
+        assert_int_equal(r1, r2);
+        char what[256];
+        snprintf(what, sizeof what, "%s %s", grid, weight);
+        assert_same(&w1, &w2, what, k);
         compared += w1.n;
-        free(e1);
-        free(e2);
     }
     mimas_weights_free(&w1);
     mimas_weights_free(&w2);
@@ -128,6 +147,11 @@ static void test_builds_agree(void **state)
     /* a coarse grid: rows of fewer than four cells */
     total += compare_builds("x=0:0.01:3,y=0:0.012:2,z=0:0.009:3", "gauss:w=0.002", 0, 300, 7);
     assert_true(total > 100000); /* enough cells, cut and uncut, to mean something */
+    /* r-z grids, the axis at the box's corner: branches from on the axis to r = 11 mm */
+    size_t rz = 0;
+    for (size_t k = 0; k < sizeof weights / sizeof weights[0]; k++)
+        rz += compare_builds("r=0:0.011:11,z=0:0.009:9", weights[k], 0, 150, 201 + k);
+    assert_true(rz > 20000);
 }
 
 int main(void)
