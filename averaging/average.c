@@ -61,7 +61,8 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
 #endif
     /* one frame's sums: where one thread deposits, and what the spread is taken of;
      * more threads without the spread add their copies straight into the sum */
-    if (a->threads == 1 || o->spread)
+    int frame_sums = a->threads == 1 || o->spread;
+    if (frame_sums)
         a->frame_sum = calloc(a->cells * NSUMS, sizeof *a->frame_sum);
     a->scratch = calloc(nf, sizeof *a->scratch);
     if (a->threads > 1)
@@ -75,7 +76,7 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
                   (g->kind == MIMAS_GRID_CARTESIAN ? g->gridded[0] && g->gridded[1]
                                                    : g->gridded[1]);
     a->kappa = sampled && o->weight.kind == MIMAS_WEIGHT_GAUSS ? o->weight.kappa : 0.0;
-    int ok = a->sum && (a->frame_sum || (a->threads > 1 && !o->spread)) && a->scratch && a->ws &&
+    int ok = a->sum && (a->frame_sum || !frame_sums) && a->scratch && a->ws &&
              (a->threads == 1 || a->thread_sum);
     if (ok && o->spread) {
         a->f_mean = calloc(a->cells * nf, sizeof *a->f_mean);

@@ -529,16 +529,9 @@ static void cut_flush4(cut_queue *q, const shell_consts *sc, double len, int all
             if (wv[u] != 0.0)
                 dep_cursor_put(cur, q->cell[i + u], wv[u]);
     }
-    int rest = n - done;
-    for (int m = 0; m < rest; m++) {
-        q->cell[m] = q->cell[done + m];
-        q->e[m] = q->e[done + m];
-        q->qb[m] = q->qb[done + m];
-        q->t[m] = q->t[done + m];
-        q->ea[m] = q->ea[done + m];
-        q->eb[m] = q->eb[done + m];
-    }
-    q->n = rest;
+    q->n = 0; /* the rest to the front (done >= where each goes) */
+    for (int m = done; m < n; m++)
+        cut_push(q, q->cell[m], q->e[m], q->qb[m], q->t[m], q->ea[m], q->eb[m]);
 }
 
 /* Puts the cells of the bits of m (of the four from cell `first`): ayz ea vrow - sh, the

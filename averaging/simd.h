@@ -11,7 +11,8 @@
     __GNUC__ >= 6
 #define MIMAS_SIMD __attribute__((target_clones("avx2", "default")))
 /* the same processors: a function built twice, once under #pragma GCC target("avx2")
- * with its intrinsics, chosen by __builtin_cpu_supports (deposit_gauss.c) */
+ * with its intrinsics, chosen by __builtin_cpu_supports (the Gaussian's line integrals,
+ * deposit_gauss.c and deposit_ring.c) */
 #define MIMAS_X86_DISPATCH 1
 #else
 #define MIMAS_SIMD
