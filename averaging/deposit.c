@@ -109,8 +109,10 @@ void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weig
     dp->wt = wt;
     dp->none = grid_none;
     dp->box_volume = mimas_box_volume(box);
-    for (int d = 0; d < 3; d++)
+    for (int d = 0; d < 3; d++) {
         dp->h[d] = (g->hi[d] - g->lo[d]) / g->n[d];
+        dp->inv_h[d] = 1.0 / dp->h[d];
+    }
     dp->cart_volume = dp->h[0] * dp->h[1] * dp->h[2];
     dp->kernel = wt->kind >= MIMAS_WEIGHT_GAUSS;
     dp->inv_extent = 1.0;
@@ -506,11 +508,8 @@ static double bins_segment_cell(const mimas_deposit *dp, const int idx[3], const
                                 const double hi[3], const double c[3], const cell_object *o,
                                 double *gr)
 {
-    (void)idx, (void)c, (void)gr;
-    double f = dp->grid->kind == MIMAS_GRID_CARTESIAN
-                   ? segment_fraction_box(o->x, o->b, lo, hi)
-                   : segment_fraction_cylcell(o->a, o->ab, lo[0], hi[0], lo[1], hi[1], lo[2],
-                                              hi[2]);
+    (void)idx, (void)c, (void)gr; /* cylindrical grids (Cartesian ones: dep_walk_segment) */
+    double f = segment_fraction_cylcell(o->a, o->ab, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]);
     return f / cell_volume(dp, lo, hi);
 }
 
@@ -534,60 +533,6 @@ static int segment_cells(const mimas_deposit *dp, const double a[3], const doubl
                       : each_cell(dp, lo, hi, bins_segment_cell, &o, 0, 1.0, ws);
 }
 
-/* Bins on a Cartesian grid: walk the segment through the cells.  The
- * parameters where it crosses grid planes split it into pieces that each lie
- * in one cell (the cell of the piece's midpoint), so every piece gets its
- * exact length fraction and the pieces add up to the part on the grid.
- * Returns 0 for a long segment (the cell search does it), -1 when out of
- * memory, 1 when done. */
-static int walk_segment(const mimas_deposit *dp, const double a[3], const double b[3],
-                        mimas_weights *ws)
-{
-    const mimas_grid *g = dp->grid;
-    double t[64];
-    int nt = 0;
-    t[nt++] = 0.0;
-    for (int d = 0; d < 3; d++) {
-        /* the positions are finite: plain comparisons (fmin and fmax are library calls) */
-        double lo = a[d] < b[d] ? a[d] : b[d], hi = a[d] < b[d] ? b[d] : a[d],
-               len = b[d] - a[d];
-        if (!(hi > lo))
-            continue;
-        double k0 = ceil(((lo > g->lo[d] ? lo : g->lo[d]) - g->lo[d]) / dp->h[d]);
-        for (double k = k0;; k++) {
-            double x = g->lo[d] + k * dp->h[d];
-            if (x >= hi || x > g->hi[d])
-                break;
-            if (nt >= 62)
-                return 0;
-            if (x > lo)
-                t[nt++] = (x - a[d]) / len;
-        }
-    }
-    t[nt++] = 1.0;
-    /* insertion sort: a handful of values */
-    for (int i = 1; i < nt; i++)
-        for (int j = i; j > 0 && t[j] < t[j - 1]; j--) {
-            double x = t[j];
-            t[j] = t[j - 1];
-            t[j - 1] = x;
-        }
-    if (mimas_weights_reserve(ws, (size_t)nt))
-        return -1;
-    for (int i = 0; i + 1 < nt; i++) {
-        double dt = t[i + 1] - t[i];
-        if (!(dt > 0))
-            continue;
-        double tm = 0.5 * (t[i] + t[i + 1]), q[3];
-        for (int d = 0; d < 3; d++)
-            q[d] = a[d] + tm * (b[d] - a[d]);
-        size_t cell;
-        if (cell_of(g, dp->h, q, &cell))
-            dep_put(ws, cell, dt / dp->cart_volume);
-    }
-    return 1;
-}
-
 int mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const double b[3],
                           mimas_weights *ws)
 {
@@ -603,6 +548,25 @@ int mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const doub
         /* the cell of the segment's midpoint */
         double m[3] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
         return mimas_deposit_sphere(dp, m, 0.0, 0, ws);
+    }
+    if (!dp->kernel && g->kind == MIMAS_GRID_CARTESIAN) {
+        /* bins: each image whose bounding box meets the grid walked through the cells */
+        double blo[3], bhi[3];
+        for (int d = 0; d < 3; d++) {
+            blo[d] = a[d] < b[d] ? a[d] : b[d];
+            bhi[d] = a[d] < b[d] ? b[d] : a[d];
+        }
+        int nimg = images_to_try(dp, blo, bhi);
+        for (int s = 0; s < nimg; s++) {
+            if (!image_reaches(dp, s, blo, bhi))
+                continue;
+            const double *sh = dp->shift[s];
+            double as[3] = {a[0] + sh[0], a[1] + sh[1], a[2] + sh[2]};
+            double bs[3] = {b[0] + sh[0], b[1] + sh[1], b[2] + sh[2]};
+            if (dep_walk_segment(dp, as, bs, ws))
+                return MIMAS_EIO;
+        }
+        return MIMAS_OK;
     }
     double half = 0.5 * sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
                              (b[2] - a[2]) * (b[2] - a[2]));
@@ -626,13 +590,6 @@ int mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const doub
         mimas_grid_to_axis(g, as, aa);
         mimas_grid_to_axis(g, bs, ab);
         mimas_grid_to_axis(g, mid, am);
-        if (!dp->kernel && g->kind == MIMAS_GRID_CARTESIAN) {
-            int done = walk_segment(dp, as, bs, ws);
-            if (done < 0)
-                return MIMAS_EIO;
-            if (done)
-                continue;
-        }
         rc = segment_cells(dp, as, bs, aa, ab, am, reach, ws);
     }
     return rc;

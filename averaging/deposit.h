@@ -42,6 +42,7 @@ typedef struct mimas_deposit {
                             * the grid by more than this on every side has no image
                             * that reaches it (INFINITY: always search the images) */
     double h[3];           /* cell sizes of the grid */
+    double inv_h[3];       /* their reciprocals */
     double cart_volume;    /* cell volume of a Cartesian grid */
     int kernel;            /* a kernel weight (Gaussian, Lucy, Shepard) */
     int dims;              /* kernels: the dimension the kernel is resolved in (1-3) */

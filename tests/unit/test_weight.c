@@ -565,6 +565,102 @@ static void test_ring_segments(void **state)
     check_ring_segments("lucy:c=0.003");
 }
 
+/* ---- bins: a branch walked through the cells of a Cartesian grid ---- */
+
+/* The fraction of the segment a-b inside the box [lo, hi] (slab clipping, written out
+ * here) */
+static double clip_fraction(const double a[3], const double b[3], const double lo[3],
+                            const double hi[3])
+{
+    double t0 = 0, t1 = 1;
+    for (int d = 0; d < 3; d++) {
+        double l = b[d] - a[d];
+        if (l == 0) {
+            if (a[d] < lo[d] || a[d] > hi[d])
+                return 0;
+            continue;
+        }
+        double u = (lo[d] - a[d]) / l, v = (hi[d] - a[d]) / l;
+        t0 = fmax(t0, fmin(u, v));
+        t1 = fmin(t1, fmax(u, v));
+    }
+    return t1 > t0 ? t1 - t0 : 0;
+}
+
+/* The weights of a segment on the 26^3 grid over [0, 26 mm]^3 (cells of 1 mm, whose planes
+ * lo + k h overshoot the grid's upper bound by rounding: 26 h = 0.026000000000000002), as
+ * a dense array times the cell volume */
+static void walk_dense(const mimas_deposit *dp, const double a[3], const double b[3],
+                       double *dense, size_t nc, mimas_weights *ws)
+{
+    ws->n = 0;
+    assert_int_equal(mimas_deposit_segment(dp, a, b, ws), MIMAS_OK);
+    memset(dense, 0, nc * sizeof *dense);
+    for (size_t e = 0; e < ws->n; e++)
+        dense[ws->cell[e]] += ws->w[e] * dp->cart_volume;
+}
+
+/* Each cell holds the fraction of the branch inside it (the cells' bounds from the grid's
+ * definition: lo + k h, the last one ending at hi), and only the part on the grid counts:
+ * random branches in and across the grid's faces, and two across the upper face, where a
+ * cell of the last layer holds exactly the part below it. */
+static void test_bins_walk(void **state)
+{
+    (void)state;
+    mimas_weight wt = parse("bins");
+    mimas_grid g;
+    mimas_error err;
+    assert_int_equal(mimas_grid_parse(&g, "x=0:0.026:26,y=0:0.026:26,z=0:0.026:26", NULL, &err),
+                     MIMAS_OK);
+    mimas_box box = {{-0.01, -0.01, -0.01}, {0.04, 0.04, 0.04}, 0, 0, 0, {0, 0, 0}};
+    mimas_deposit dp;
+    mimas_deposit_init(&dp, &g, &wt, &box, 0);
+    size_t nc = mimas_grid_cells(&g);
+    double *dense = calloc(nc, sizeof *dense), h = 0.026 / 26;
+    mimas_weights ws = {0};
+    unsigned long long state64 = 12345;
+    double worst = 0;
+    for (int k = 0; k < 400; k++) {
+        double a[3], b[3];
+        for (int m = 0; m < 3; m++) {
+            state64 = state64 * 6364136223846793005ULL + 1442695040888963407ULL;
+            a[m] = -0.002 + 0.030 * (double)(state64 >> 11) / 9007199254740992.0;
+            state64 = state64 * 6364136223846793005ULL + 1442695040888963407ULL;
+            b[m] = a[m] + (k % 2 ? 0.003 : 0.0012) * ((double)(state64 >> 11) / 9007199254740992.0 - 0.5);
+        }
+        if (k % 7 == 0)
+            b[k % 3] = a[k % 3]; /* in a plane of constant coordinate */
+        walk_dense(&dp, a, b, dense, nc, &ws);
+        double glo[3] = {0, 0, 0}, ghi[3] = {0.026, 0.026, 0.026}, total = 0;
+        for (size_t c = 0; c < nc; c++) {
+            int idx[3];
+            mimas_grid_unindex(&g, c, idx);
+            double lo[3], hi[3];
+            for (int m = 0; m < 3; m++) {
+                lo[m] = 0 + h * idx[m];
+                hi[m] = idx[m] == 25 ? 0.026 : lo[m] + h;
+            }
+            double f = clip_fraction(a, b, lo, hi);
+            worst = fmax(worst, fabs(dense[c] - f));
+            assert_true(fabs(dense[c] - f) < 1e-13);
+            total += dense[c];
+        }
+        assert_true(fabs(total - clip_fraction(a, b, glo, ghi)) < 1e-13);
+    }
+    /* across the upper face z = 0.026: a quarter and 5/7 of the branch on the grid */
+    const double across[2][6] = {{0.0105, 0.0105, 0.0255, 0.0105, 0.0105, 0.0275},
+                                 {0.0105, 0.0105, 0.0255, 0.0105, 0.0105, 0.0262}};
+    const double part[2] = {0.25, 5.0 / 7.0};
+    for (int k = 0; k < 2; k++) {
+        walk_dense(&dp, across[k], across[k] + 3, dense, nc, &ws);
+        int idx[3] = {10, 10, 25};
+        assert_close(dense[mimas_grid_index(&g, idx)], part[k], 1e-13);
+    }
+    print_message("# bins walk: 400 branches, worst %.2g of the branch\n", worst);
+    mimas_weights_free(&ws);
+    free(dense);
+}
+
 static void test_parse_errors(void **state)
 {
     (void)state;
@@ -591,6 +687,7 @@ int main(void)
         cmocka_unit_test(test_ring),
         cmocka_unit_test(test_ring_series),
         cmocka_unit_test(test_ring_segments),
+        cmocka_unit_test(test_bins_walk),
         cmocka_unit_test(test_parse_errors),
     };
     return cmocka_run_group_tests_name("weight", tests, NULL, NULL);
