@@ -2,16 +2,18 @@
  * RING_LANES_FN and RING_SEG_FN the names of the lanes and of the deposit, and with
  * RING_AVX2 the build for processors with AVX2, whose lanes read M_{1/2}'s table four at a
  * time, ring_m_half4; the same operations lane by lane, so the same weights to the bit). */
-static inline void RING_LANES_FN(const mimas_deposit *dp, const double *dr2, const double *dz,
-                                 const double *irr, double *val, double *y, int *flag)
+static inline int RING_LANES_FN(const mimas_deposit *dp, const double *dr2, const double *dz,
+                                const double *irr, double norm, double *val, int *flag)
 {
     const mimas_weight *wt = dp->wt;
     ring_v4 D2, Z, IR, zero = {0, 0, 0, 0}, one = zero + 1.0;
     memcpy(&D2, dr2, sizeof D2);
     memcpy(&Z, dz, sizeof Z);
-    memcpy(&IR, irr, sizeof IR);
     ring_v4 e = wt->reach2 - (D2 + Z * Z), tiny = zero + 1e-20;
     ring_m4 in = e > zero;
+    if (!(in[0] | in[1] | in[2] | in[3]))
+        return 0; /* no point within reach of the cell */
+    memcpy(&IR, irr, sizeof IR);
     /* at least 1e-20 where positive: their powers stay normal numbers (a power
      * below 1e-220 changes nothing) */
     ring_v4 X = e * wt->inv2w2, Y = e * IR;
@@ -27,23 +29,43 @@ static inline void RING_LANES_FN(const mimas_deposit *dp, const double *dr2, con
     for (int l = 0; l < 4; l++)
         T0[l] = ring_m_half_at(X[l] < RING_XMAX ? X[l] : RING_XMAX); /* fmin, inline */
 #endif
-    ring_v4 U = wt->tail * T0, xn = zero + wt->tail, ian = one,
-            yn = one, s0 = zero, sa = zero;
-    for (int n = 0; n <= RING_LANE_N; n++) {
-        ring_v4 next = (n + 0.5) * U - xn;
-        s0 += ring_binom[n] * ian * U;
-        sa += 0.5 * ring_binom[n] * ring_inv_half[n] * yn; /* c_n/(2n + 1) */
-        U = next;
-        ian *= IA;
-        xn *= X;
-        yn *= Y;
+    ring_v4 U = wt->tail * T0, xn = zero + wt->tail, ian = one, s0 = zero, V;
+    if (wt->shift != 0.0) { /* the shifted kernel: its shift times t_m's series too */
+        ring_v4 yn = one, sa = zero;
+        for (int n = 0; n <= RING_LANE_N; n++) {
+            ring_v4 next = (n + 0.5) * U - xn;
+            s0 += ring_binom[n] * ian * U;
+            sa += 0.5 * ring_binom[n] * ring_inv_half[n] * yn; /* c_n/(2n + 1) */
+            U = next;
+            ian *= IA;
+            xn *= X;
+            yn *= Y;
+        }
+        V = s0 - 2.0 * wt->shift * sa;
+    } else { /* s0 - 0 sa: s0 itself */
+        for (int n = 0; n <= RING_LANE_N; n++) {
+            ring_v4 next = (n + 0.5) * U - xn;
+            s0 += ring_binom[n] * ian * U;
+            U = next;
+            ian *= IA;
+            xn *= X;
+        }
+        V = s0;
     }
-    ring_v4 V = s0 - 2.0 * wt->shift * sa;
     V = RING_SEL(in & ~fl, V, zero);
+    /* the average: norm sqrt(y) V (sqrt is exact to rounding in vectors too) */
+#if RING_AVX2
+    ring_v4 sy = (ring_v4)_mm256_sqrt_pd((__m256d)Y);
+#else
+    ring_v4 sy;
+    for (int l = 0; l < 4; l++)
+        sy[l] = sqrt(Y[l]);
+#endif
+    V = norm * sy * V;
     memcpy(val, &V, sizeof V);
-    memcpy(y, &Y, sizeof Y);
     for (int l = 0; l < 4; l++)
         flag[l] = fl[l] != 0;
+    return 1;
 }
 
 #if RING_AVX2
@@ -90,23 +112,19 @@ int RING_SEG_FN(const mimas_deposit *dp, const double aa[3], const double ab[3],
             dz[j * n + q] = zc - zq[q];
     }
     int idx[3] = {0, lo[1], 0};
-    double norm = wt->coef / M_PI, R2 = wt->reach2;
+    double norm = wt->coef / M_PI;
     for (int j = 0; j < nz; j++)
         for (int i = 0; i < nr; i++) {
             double sum = 0.0;
             for (int q = 0; q < n; q += 4) {
-                double val[4], y[4];
+                double val[4];
                 int flag[4];
                 const double *d2 = dr2 + i * n + q, *z = dz + j * n + q, *ir = irr + i * n + q;
-                int any = 0;
-                for (int l = 0; l < 4; l++)
-                    any |= d2[l] + z[l] * z[l] < R2;
-                if (!any)
+                if (!RING_LANES_FN(dp, d2, z, ir, norm, val, flag))
                     continue;
-                RING_LANES_FN(dp, d2, z, ir, val, y, flag);
                 for (int l = 0; l < 4; l++) {
                     double v = flag[l] ? ring_value(wt, rc[i], rho[q + l], z[l], d2[l], NULL)
-                                       : (val[l] != 0.0 ? norm * sqrt(y[l]) * val[l] : 0.0);
+                                       : val[l];
                     sum += wq[q + l] * v;
                 }
             }
