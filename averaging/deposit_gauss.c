@@ -563,6 +563,34 @@ static inline void put4(dep_cursor *cur, size_t first, int m, double ayz, const 
     cur->cell += k;
 }
 
+/* Queues the cells of the bits of m (of the four from cell `first` of a row): what
+ * shell_cell takes of each, |r - a|^2 = qa + qay, |r - b|^2 = qb + qby, the foot
+ * (dx b_x + tyz) / len and the factors ea eayz, eb ebyz, four at a time (the same
+ * operations as cut_push's callers lane by lane), the selected lanes moved to the front
+ * and all four written (the queue has room for 4 more than a row's cells). */
+static inline void cut_push4(cut_queue *q, size_t first, int m, const double *qa,
+                             const double *qb, const double *dx, const double *ea,
+                             const double *eb, double qay, double qby, double bx, double tyz,
+                             double inv_len, double eayz, double ebyz)
+{
+    __m256i p = _mm256_loadu_si256((const __m256i *)put4_perm[m]);
+#define CUT_STORE(dst, v)                                                                         \
+    _mm256_storeu_pd((dst) + q->n,                                                            \
+                     _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(v), p)))
+    __m256d t = _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(dx), _mm256_set1_pd(bx)),
+                              _mm256_set1_pd(tyz));
+    CUT_STORE(q->e, _mm256_add_pd(_mm256_loadu_pd(qa), _mm256_set1_pd(qay)));
+    CUT_STORE(q->qb, _mm256_add_pd(_mm256_loadu_pd(qb), _mm256_set1_pd(qby)));
+    CUT_STORE(q->t, _mm256_mul_pd(t, _mm256_set1_pd(inv_len)));
+    CUT_STORE(q->ea, _mm256_mul_pd(_mm256_loadu_pd(ea), _mm256_set1_pd(eayz)));
+    CUT_STORE(q->eb, _mm256_mul_pd(_mm256_loadu_pd(eb), _mm256_set1_pd(ebyz)));
+#undef CUT_STORE
+    __m256i cell = _mm256_add_epi64(_mm256_set1_epi64x((long long)first),
+                                    _mm256_setr_epi64x(0, 1, 2, 3));
+    _mm256_storeu_si256((__m256i *)(q->cell + q->n), _mm256_permutevar8x32_epi32(cell, p));
+    q->n += __builtin_popcount((unsigned)m);
+}
+
 /* What row_classify4 takes, in every lane: the segment's (b_x, |b|^2, 1/|b|^2, R^2) and
  * the row's (across x: (r - a).b, |r - a|^2, |r - b|^2, R^2 less the latter two). */
 typedef struct row_reach4 {

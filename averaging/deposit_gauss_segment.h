@@ -155,13 +155,9 @@ int SEG_FN(const mimas_deposit *dp, const double a[3], const double b[3], mimas_
                     node_sums(ex0, (size_t)n0p, eyz, nq, c, c + 4, vrow);
                     put4(&cur, row + (size_t)c, uncut, ayz, ea[0] + c, vrow + c, sh);
                 }
-                for (int u = in & ~uncut; u; u &= u - 1) {
-                    int i = c + __builtin_ctz((unsigned)u);
-                    double qai = qa[0][i] + qay, qbi = qb[0][i] + qby;
-                    double t = dx[0][i] * bv[0] + tyz;
-                    cut_push(&cq, row + (size_t)i, qai, qbi, t * inv_len, ea[0][i] * eayz,
-                             eb[0][i] * ebyz);
-                }
+                if (in & ~uncut)
+                    cut_push4(&cq, row + (size_t)c, in & ~uncut, qa[0] + c, qb[0] + c, dx[0] + c,
+                              ea[0] + c, eb[0] + c, qay, qby, bv[0], tyz, inv_len, eayz, ebyz);
             }
 #else
             /* The cells within R of the segment form an interval of the row (the
