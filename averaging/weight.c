@@ -468,9 +468,10 @@ static double radial_kernel(const mimas_weight *wt, int dims, double D2, double 
  * it E sqrt(pi) erf(sqrt X)/sqrt X).
  * Nearer the axis, T_{N+1} by its series and T_n = (tail + X T_{n+1})/(n + 1/2)
  * downwards (stable).  Returns 0 where it does not apply (y > 1/2, or a series for
- * T_{N+1} longer than the table of 1/(j + 1/2), X > ~100). */
+ * T_{N+1} longer than the table of 1/(j + 1/2), X > ~100).  I_1 (for the gradient) only
+ * with_grad: I_0 is the same either way. */
 static int gauss_ring_series(const mimas_weight *wt, double D02, double X, double a, double y,
-                             double I[2])
+                             int with_grad, double I[2])
 {
     double tail = wt->tail, eps = 1e-17 * (1.0 - y), s0 = 0.0, s1 = 0.0;
     if (!(y <= 0.5) || !(X > 0))
@@ -484,7 +485,8 @@ static int gauss_ring_series(const mimas_weight *wt, double D02, double X, doubl
         double next = (n + 0.5) * U - xn;
         s0 += ring_binom[n] * ian * U;
         ian *= ia;
-        s1 += ring_binom[n] * ian * next;
+        if (with_grad)
+            s1 += ring_binom[n] * ian * next;
         U = next;
         xn *= X;
         yn *= y;
@@ -510,7 +512,8 @@ static int gauss_ring_series(const mimas_weight *wt, double D02, double X, doubl
     T *= tail;
     for (int n = N; n >= 0; n--) {
         double Tn = (tail + X * T) * ring_inv_half[n];
-        s1 = s1 * y + ring_binom[n] * T;
+        if (with_grad)
+            s1 = s1 * y + ring_binom[n] * T;
         s0 = s0 * y + ring_binom[n] * Tn;
         T = Tn;
     }
@@ -538,7 +541,8 @@ int mimas_gauss_ring_short(const mimas_weight *wt, double r, double rho, double 
 {
     double rr = 4.0 * r * rho, R2 = wt->reach2, um2 = (R2 - D02) / rr, I[2];
     if (!(um2 <= 0.5) ||
-        !gauss_ring_series(wt, D02, (R2 - D02) * wt->inv2w2, rr * wt->inv2w2, um2, I))
+        !gauss_ring_series(wt, D02, (R2 - D02) * wt->inv2w2, rr * wt->inv2w2, um2, grad != NULL,
+                           I))
         return 0;
     /* (coef/pi) (I_0 - shift t_m); d/dr of D^2 is 2 (r - rho) + 4 rho u^2 */
     *v = wt->coef / M_PI * I[0];
