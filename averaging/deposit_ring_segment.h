@@ -2,6 +2,8 @@
  * RING_LANES_FN and RING_SEG_FN the names of the lanes and of the deposit, and with
  * RING_AVX2 the build for processors with AVX2, whose lanes read M_{1/2}'s table four at a
  * time, ring_m_half4; the same operations lane by lane, so the same weights to the bit). */
+/* Four branch points for one cell: 0 when none is within reach, else 1 with val their
+ * averages (0 for the flagged ones) and *flag the bits of the lanes left to ring_value. */
 static inline int RING_LANES_FN(const mimas_deposit *dp, const double *dr2, const double *dz,
                                 const double *irr, double norm, double *val, int *flag)
 {
@@ -11,7 +13,11 @@ static inline int RING_LANES_FN(const mimas_deposit *dp, const double *dr2, cons
     memcpy(&Z, dz, sizeof Z);
     ring_v4 e = wt->reach2 - (D2 + Z * Z), tiny = zero + 1e-20;
     ring_m4 in = e > zero;
+#if RING_AVX2
+    if (!_mm256_movemask_pd((__m256d)in))
+#else
     if (!(in[0] | in[1] | in[2] | in[3]))
+#endif
         return 0; /* no point within reach of the cell */
     memcpy(&IR, irr, sizeof IR);
     /* at least 1e-20 where positive: their powers stay normal numbers (a power
@@ -63,8 +69,14 @@ static inline int RING_LANES_FN(const mimas_deposit *dp, const double *dr2, cons
 #endif
     V = norm * sy * V;
     memcpy(val, &V, sizeof V);
+#if RING_AVX2
+    *flag = _mm256_movemask_pd((__m256d)fl);
+#else
+    int bits = 0;
     for (int l = 0; l < 4; l++)
-        flag[l] = fl[l] != 0;
+        bits |= (fl[l] != 0) << l;
+    *flag = bits;
+#endif
     return 1;
 }
 
@@ -118,13 +130,21 @@ int RING_SEG_FN(const mimas_deposit *dp, const double aa[3], const double ab[3],
             double sum = 0.0;
             for (int q = 0; q < n; q += 4) {
                 double val[4];
-                int flag[4];
+                int flag;
                 const double *d2 = dr2 + i * n + q, *z = dz + j * n + q, *ir = irr + i * n + q;
-                if (!RING_LANES_FN(dp, d2, z, ir, norm, val, flag))
+                if (!RING_LANES_FN(dp, d2, z, ir, norm, val, &flag))
                     continue;
+                if (!flag) { /* the lanes' values, in the same order */
+                    sum += wq[q] * val[0];
+                    sum += wq[q + 1] * val[1];
+                    sum += wq[q + 2] * val[2];
+                    sum += wq[q + 3] * val[3];
+                    continue;
+                }
                 for (int l = 0; l < 4; l++) {
-                    double v = flag[l] ? ring_value(wt, rc[i], rho[q + l], z[l], d2[l], NULL)
-                                       : val[l];
+                    double v = flag >> l & 1
+                                   ? ring_value(wt, rc[i], rho[q + l], z[l], d2[l], NULL)
+                                   : val[l];
                     sum += wq[q + l] * v;
                 }
             }
