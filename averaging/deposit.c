@@ -283,6 +283,24 @@ static int images_to_try(const mimas_deposit *dp, const double lo[3], const doub
     return 1;
 }
 
+/* Whether the ball of radius reach about an axis-frame point can meet a cylindrical
+ * grid's r and z ranges (always on Cartesian grids): dep_candidate_box's test of them,
+ * without its square root (r^2 against the bounds squared, widened by 1e-9, so that it
+ * never refuses what that test would take), to pass over the periodic images that miss
+ * the grid before their cells are sought. */
+static int ring_reaches(const mimas_deposit *dp, const double a[3], double reach)
+{
+    const mimas_grid *g = dp->grid;
+    if (g->kind == MIMAS_GRID_CARTESIAN)
+        return 1;
+    if (!(dp->kernel && !g->gridded[2]) && (a[2] + reach < g->lo[2] || a[2] - reach > g->hi[2]))
+        return 0;
+    double r2 = a[0] * a[0] + a[1] * a[1], out = g->hi[0] + reach, in = g->lo[0] - reach;
+    if (r2 > out * out * (1.0 + 1e-9))
+        return 0;
+    return !(in > 0 && r2 < in * in * (1.0 - 1e-9));
+}
+
 /* What a cell-by-cell deposit needs: the object (Cartesian and axis-frame
  * positions, radius) and, per cell, its weight and (kernels) gradient. */
 typedef struct cell_object {
@@ -441,6 +459,8 @@ int mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, i
             }
             continue;
         }
+        if (!ring_reaches(dp, a, reach))
+            continue;
         rc = dp->kernel ? kernel_sphere(dp, xs, a, with_grad, ws) : bins_sphere(dp, xs, a, R, ws);
     }
     return rc;
@@ -587,9 +607,11 @@ int mimas_deposit_segment(const mimas_deposit *dp, const double a[3], const doub
             bs[d] = b[d] + dp->shift[s][d];
             mid[d] = 0.5 * (as[d] + bs[d]);
         }
+        mimas_grid_to_axis(g, mid, am);
+        if (!ring_reaches(dp, am, reach))
+            continue;
         mimas_grid_to_axis(g, as, aa);
         mimas_grid_to_axis(g, bs, ab);
-        mimas_grid_to_axis(g, mid, am);
         rc = segment_cells(dp, as, bs, aa, ab, am, reach, ws);
     }
     return rc;
