@@ -27,7 +27,7 @@ static inline int cell_along(const mimas_deposit *dp, int d, double x, int up)
 {
     const mimas_grid *g = dp->grid;
     int n = g->n[d];
-    if (up ? x < g->lo[d] : x <= g->lo[d])
+    if (!(up ? x >= g->lo[d] : x > g->lo[d])) /* (NaN too: on no grid) */
         return -1;
     if (up ? x >= g->hi[d] : x > g->hi[d])
         return n;
@@ -77,6 +77,8 @@ int dep_walk_segment(const mimas_deposit *dp, const double a[3], const double b[
         tnext[d] = next_crossing(g, h, d, idx[d], step[d], a[d], b[d], len[d]);
         pieces += fabs(len[d]) * dp->inv_h[d] + 2; /* at least the planes crossed */
     }
+    if (isnan(pieces)) /* a position that is not a number: on no grid */
+        return MIMAS_OK;
     if (!(pieces < 1e9) || mimas_weights_reserve(ws, (size_t)pieces))
         return MIMAS_EIO;
     size_t sy = (size_t)g->n[0], sz = sy * (size_t)g->n[1];

@@ -656,6 +656,11 @@ static void test_bins_walk(void **state)
         int idx[3] = {10, 10, 25};
         assert_close(dense[mimas_grid_index(&g, idx)], part[k], 1e-13);
     }
+    /* a position that is not a number lies on no cell (and does not hang the walk) */
+    const double nan3[3] = {NAN, 0.01, 0.01}, in3[3] = {0.0105, 0.0105, 0.0105};
+    ws.n = 0;
+    assert_int_equal(mimas_deposit_segment(&dp, nan3, in3, &ws), MIMAS_OK);
+    assert_int_equal(ws.n, 0);
     print_message("# bins walk: 400 branches, worst %.2g of the branch\n", worst);
     mimas_weights_free(&ws);
     free(dense);
