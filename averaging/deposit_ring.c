@@ -84,62 +84,146 @@ int mimas_gauss_sphere_rz(const mimas_deposit *dp, const double a[3], int with_g
     return MIMAS_OK;
 }
 
-/* The contacts' lanes: 4 branch points at once for one cell, branch-free in GCC's vectors
- * of 4 doubles (one AVX2 instruction each in the AVX2 build, simd.h; two SSE2 ones else).
- * Where the arc is short and far from the axis (y = X/a <= RING_LANE_Y,
- * a >= 4 (RING_LANE_N + 2), X <= RING_XMAX) the series of mimas_gauss_ring_short with a
- * fixed RING_LANE_N + 1 terms (y^{N+1} < 3e-19) and T_0 = tail M_{1/2}(X) from its table;
- * other points inside the support are flagged for ring_value.  The shifted kernel's
- * tm = 2 asin(u_m) is the same series with T_n = 2/(2n + 1). */
+/* The contacts' lanes: RING_W branch points at once for one cell, branch-free in GCC's
+ * vectors of RING_W doubles (4 in the portable build, two SSE2 instructions each, and in
+ * the AVX2 build, one instruction each; 8 in the AVX-512 build, simd.h).  Where the arc is
+ * short and far from the axis (y = X/a <= RING_LANE_Y, a >= 4 (RING_LANE_N + 2),
+ * X <= RING_XMAX) the series of mimas_gauss_ring_short with a fixed RING_LANE_N + 1 terms
+ * (y^{N+1} < 3e-19) and T_0 = tail M_{1/2}(X) from its table; other points inside the
+ * support are flagged for ring_value.  The shifted kernel's tm = 2 asin(u_m) is the same
+ * series with T_n = 2/(2n + 1).  Each build includes deposit_ring_segment.h with RING_W,
+ * its vector, mask and index types RING_VT, RING_MT and RING_IT, and RING_ANY (a lane of a
+ * mask set), RING_BITS (the mask as bits), RING_GATHER (the table's coefficient k at each
+ * lane's row) and RING_SQRT: lane by lane the same operations in every build, and the same
+ * as ring_m_half_at's and mimas_gauss_ring_short's, so the same weights to the bit.  (The
+ * helpers take their vectors by address: without AVX a vector of 4 doubles is not passed
+ * in registers.) */
 #define RING_LANE_N 10
 #define RING_LANE_Y 0.02
 
 typedef double ring_v4 __attribute__((vector_size(32)));
 typedef long long ring_m4 __attribute__((vector_size(32)));
+typedef int ring_i4 __attribute__((vector_size(16)));
 /* m ? a : b lane by lane (m from a comparison: all ones or zero) */
-#define RING_SEL(m, a, b) ((ring_v4)(((ring_m4)(a) & (m)) | ((ring_m4)(b) & ~(m))))
+#define RING_SEL(m, a, b) ((RING_VT)(((RING_MT)(a) & (m)) | ((RING_MT)(b) & ~(m))))
 
+static inline int ring_bits_p(const ring_m4 *m)
+{
+    int bits = 0;
+    for (int l = 0; l < 4; l++)
+        bits |= ((*m)[l] != 0) << l;
+    return bits;
+}
+
+static inline int ring_any_p(const ring_m4 *m)
+{
+    return ring_bits_p(m) != 0;
+}
+
+static inline void ring_gather_p(const double *base, const ring_i4 *row, ring_v4 *c)
+{
+    for (int l = 0; l < 4; l++)
+        (*c)[l] = base[(*row)[l]];
+}
+
+static inline void ring_sqrt_p(const ring_v4 *Y, ring_v4 *r)
+{
+    for (int l = 0; l < 4; l++)
+        (*r)[l] = sqrt((*Y)[l]);
+}
+
+#define RING_W 4
+#define RING_VT ring_v4
+#define RING_MT ring_m4
+#define RING_IT ring_i4
+#define RING_ANY ring_any_p
+#define RING_BITS ring_bits_p
+#define RING_GATHER ring_gather_p
+#define RING_SQRT ring_sqrt_p
+#define RING_TABLE_FN ring_table
 #define RING_LANES_FN ring_lanes
 #define RING_SEG_FN mimas_gauss_segment_rz_portable
-#define RING_AVX2 0
 #include "deposit_ring_segment.h"
-#undef RING_LANES_FN
-#undef RING_SEG_FN
-#undef RING_AVX2
 
 #if MIMAS_X86_DISPATCH
 #pragma GCC push_options
 #pragma GCC target("avx2")
 
-/* ring_m_half_at at four points (X >= 0, taken as RING_XMAX beyond it), lane by lane the
- * same operations, the coefficients gathered. */
-static inline __m256d ring_m_half4(__m256d X)
+static inline int ring_bits_avx2(const ring_m4 *m)
 {
-    X = _mm256_min_pd(X, _mm256_set1_pd(RING_XMAX));
-    __m128i m = _mm256_cvttpd_epi32(_mm256_mul_pd(X, _mm256_set1_pd(RING_STEP)));
-    m = _mm_min_epi32(m, _mm_set1_epi32(RING_STEP * RING_XMAX - 1));
-    __m256d mid = _mm256_div_pd(_mm256_add_pd(_mm256_cvtepi32_pd(m), _mm256_set1_pd(0.5)),
-                                _mm256_set1_pd(RING_STEP));
-    __m256d t = _mm256_sub_pd(X, mid), t2 = _mm256_mul_pd(t, t);
-    __m128i row = _mm_mullo_epi32(m, _mm_set1_epi32(RING_DEG + 1));
-    const double *base = &ring_m_half[0][0];
-    __m256d c[RING_DEG + 1];
-    for (int k = 0; k <= RING_DEG; k++)
-        c[k] = _mm256_i32gather_pd(base + k, row, 8);
-    __m256d lo = _mm256_add_pd(_mm256_add_pd(c[0], _mm256_mul_pd(c[1], t)),
-                               _mm256_mul_pd(t2, _mm256_add_pd(c[2], _mm256_mul_pd(c[3], t))));
-    __m256d hi = _mm256_add_pd(_mm256_add_pd(c[4], _mm256_mul_pd(c[5], t)),
-                               _mm256_mul_pd(t2, _mm256_add_pd(c[6], _mm256_mul_pd(c[7], t))));
-    return _mm256_add_pd(lo, _mm256_mul_pd(_mm256_mul_pd(t2, t2), hi));
+    return _mm256_movemask_pd((__m256d)*m);
 }
 
+static inline int ring_any_avx2(const ring_m4 *m)
+{
+    return ring_bits_avx2(m) != 0;
+}
+
+static inline void ring_gather_avx2(const double *base, const ring_i4 *row, ring_v4 *c)
+{
+    *c = (ring_v4)_mm256_i32gather_pd(base, (__m128i)*row, 8);
+}
+
+static inline void ring_sqrt_avx2(const ring_v4 *Y, ring_v4 *r)
+{
+    *r = (ring_v4)_mm256_sqrt_pd((__m256d)*Y);
+}
+
+#define RING_W 4
+#define RING_VT ring_v4
+#define RING_MT ring_m4
+#define RING_IT ring_i4
+#define RING_ANY ring_any_avx2
+#define RING_BITS ring_bits_avx2
+#define RING_GATHER ring_gather_avx2
+#define RING_SQRT ring_sqrt_avx2
+#define RING_TABLE_FN ring_table_avx2
 #define RING_LANES_FN ring_lanes_avx2
-#define RING_SEG_FN segment_rz_avx2
-#define RING_AVX2 1
+#define RING_SEG_FN mimas_gauss_segment_rz_avx2
 #include "deposit_ring_segment.h"
-#undef RING_LANES_FN
-#undef RING_SEG_FN
-#undef RING_AVX2
+#pragma GCC pop_options
+
+#pragma GCC push_options
+#pragma GCC target("avx2,avx512f")
+
+typedef double ring_v8 __attribute__((vector_size(64)));
+typedef long long ring_m8 __attribute__((vector_size(64)));
+typedef int ring_i8 __attribute__((vector_size(32)));
+
+static inline int ring_bits_avx512(const ring_m8 *m)
+{
+    return (int)_mm512_test_epi64_mask((__m512i)*m, (__m512i)*m);
+}
+
+static inline int ring_any_avx512(const ring_m8 *m)
+{
+    return ring_bits_avx512(m) != 0;
+}
+
+static inline void ring_gather_avx512(const double *base, const ring_i8 *row, ring_v8 *c)
+{
+    *c = (ring_v8)_mm512_i32gather_pd((__m256i)*row, base, 8);
+}
+
+static inline void ring_sqrt_avx512(const ring_v8 *Y, ring_v8 *r)
+{
+    *r = (ring_v8)_mm512_sqrt_pd((__m512d)*Y);
+}
+
+/* the rules of 4 points (the shortest branches) in the AVX2 build */
+#define RING_NARROW mimas_gauss_segment_rz_avx2
+#define RING_W 8
+#define RING_VT ring_v8
+#define RING_MT ring_m8
+#define RING_IT ring_i8
+#define RING_ANY ring_any_avx512
+#define RING_BITS ring_bits_avx512
+#define RING_GATHER ring_gather_avx512
+#define RING_SQRT ring_sqrt_avx512
+#define RING_TABLE_FN ring_table_avx512
+#define RING_LANES_FN ring_lanes_avx512
+#define RING_SEG_FN mimas_gauss_segment_rz_avx512
+#include "deposit_ring_segment.h"
 #pragma GCC pop_options
 #endif
 
@@ -147,8 +231,10 @@ int mimas_gauss_segment_rz(const mimas_deposit *dp, const double aa[3], const do
                            const double am[3], double reach, double scale, mimas_weights *ws)
 {
 #if MIMAS_X86_DISPATCH
+    if (__builtin_cpu_supports("avx512f"))
+        return mimas_gauss_segment_rz_avx512(dp, aa, ab, am, reach, scale, ws);
     if (__builtin_cpu_supports("avx2"))
-        return segment_rz_avx2(dp, aa, ab, am, reach, scale, ws);
+        return mimas_gauss_segment_rz_avx2(dp, aa, ab, am, reach, scale, ws);
 #endif
     return mimas_gauss_segment_rz_portable(dp, aa, ab, am, reach, scale, ws);
 }

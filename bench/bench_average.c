@@ -3,8 +3,9 @@
  * gauss (w = d) on an x-y-z grid of spacing d and on an r-z grid of spacing d.
  * Prints particles/s and contacts/s (contact time = time with contacts minus
  * time without), from the wall clock and, for one thread, from the process's
- * CPU time (which a loaded machine disturbs less), per frame in the steady state (after
- * one untimed frame).
+ * CPU time (which a loaded machine disturbs less): the shortest of F frames in
+ * the steady state (after one untimed frame), the frames with and without
+ * contacts alternated.
  * --scaling: how the time grows with the kernel width (gauss x-y-z, w = d/2 .. 4d, one
  * thread, a 20^3 lattice on a 20^3 grid), with the cells a particle touches for
  * comparison: the separable deposit grows like them, ~w^3.
@@ -69,40 +70,70 @@ static void build(mimas_frame *f, int m, double d)
     gsl_rng_free(rng);
 }
 
-static timing run(const mimas_frame *f, const char *grid, const char *weight, int frames,
-                  int threads)
+static mimas_average *create(const char *grid, const char *weight, int threads)
 {
     mimas_average_options o;
     memset(&o, 0, sizeof o);
     mimas_error err;
-    if (mimas_grid_parse(&o.grid, grid, NULL, &err) ||
-        mimas_weight_parse(&o.weight, weight, &err)) {
-        fprintf(stderr, "bench_average: %s\n", err.msg);
-        exit(2);
-    }
-    o.threads = threads;
     mimas_average *a;
-    if (mimas_average_create(&a, &o, &err)) {
+    if (mimas_grid_parse(&o.grid, grid, NULL, &err) ||
+        mimas_weight_parse(&o.weight, weight, &err) ||
+        (o.threads = threads, mimas_average_create(&a, &o, &err))) {
         fprintf(stderr, "bench_average: %s\n", err.msg);
         exit(2);
     }
-    /* steady state: one frame first, untimed, which touches the fresh sums (their
-     * page faults, about 8 us a page on this virtual machine, cost a first frame of a
-     * 46^3 grid 0.1-0.2 s) */
+    return a;
+}
+
+/* One frame added to a, timed (the smaller of each clock kept in t). */
+static void add_timed(mimas_average *a, const mimas_frame *f, timing *t)
+{
+    mimas_error err;
+    double t0 = clock_of(CLOCK_MONOTONIC), c0 = clock_of(CLOCK_PROCESS_CPUTIME_ID);
     if (mimas_average_add(a, f, &err)) {
         fprintf(stderr, "bench_average: %s\n", err.msg);
         exit(2);
     }
-    double t0 = clock_of(CLOCK_MONOTONIC), c0 = clock_of(CLOCK_PROCESS_CPUTIME_ID);
-    for (int k = 0; k < frames; k++)
-        if (mimas_average_add(a, f, &err)) {
-            fprintf(stderr, "bench_average: %s\n", err.msg);
-            exit(2);
-        }
-    timing t = {(clock_of(CLOCK_MONOTONIC) - t0) / frames,
-                (clock_of(CLOCK_PROCESS_CPUTIME_ID) - c0) / frames};
-    mimas_average_free(a);
-    return t;
+    double wall = clock_of(CLOCK_MONOTONIC) - t0, cpu = clock_of(CLOCK_PROCESS_CPUTIME_ID) - c0;
+    if (wall < t->wall)
+        t->wall = wall;
+    if (cpu < t->cpu)
+        t->cpu = cpu;
+}
+
+/* The time of a frame with contacts (all) and of the same frame without (bare):
+ * the shortest of `frames` each, after one untimed frame each, which touches the
+ * fresh sums (their page faults, about 8 us a page on this virtual machine,
+ * cost a first frame of a 46^3 grid 0.1-0.2 s).  On a shared machine the time
+ * of a frame scatters by up to 1.5x from frame to frame; the shortest is what
+ * the program takes when nothing else runs.  The two averages' frames are not
+ * interleaved: a real run adds its frames to one average, whose sums stay in
+ * the cache (alternating two averages of 50 MB each made every frame 1.5x
+ * slower). */
+static void run_pair(const mimas_frame *f, const mimas_frame *bare, const char *grid,
+                     const char *weight, int frames, int threads, timing *all, timing *tb)
+{
+    const mimas_frame *fr[2] = {f, bare};
+    timing *t[2] = {all, tb};
+    for (int k = 0; k < 2; k++) {
+        mimas_average *a = create(grid, weight, threads);
+        timing untimed = {HUGE_VAL, HUGE_VAL};
+        add_timed(a, fr[k], &untimed);
+        t[k]->wall = t[k]->cpu = HUGE_VAL;
+        for (int q = 0; q < frames; q++)
+            add_timed(a, fr[k], t[k]);
+        mimas_average_free(a);
+    }
+}
+
+/* n objects over t seconds, or "n/a" where the difference of two times is not
+ * above their scatter */
+static void print_rate(double n, double t)
+{
+    if (t > 0)
+        printf("%.3g /s", n / t);
+    else
+        printf("n/a");
 }
 
 /* The frame of an m^3 lattice with its contacts, and the same without contacts. */
@@ -131,7 +162,8 @@ static int scaling(void)
     for (int k = 0; k < 5; k++) {
         char weight[64];
         snprintf(weight, sizeof weight, "gauss:w=%g", ws[k] * d);
-        timing all = run(&f, grid, weight, 1, 1), p = run(&bare, grid, weight, 1, 1);
+        timing all, p;
+        run_pair(&f, &bare, grid, weight, 3, 1, &all, &p);
         double tp = p.cpu, tc = all.cpu - p.cpu, cells = pow(2 * 3 * ws[k] + 1, 3);
         printf("  w = %.1f d: particles %.3g s, contacts %.3g s (cells in reach ~%.0f)", ws[k], tp,
                tc, cells);
@@ -180,14 +212,21 @@ int main(int argc, char **argv)
         for (int threads = 1; threads <= max_threads; threads++) {
             if (only >= 0 && (size_t)only != k)
                 continue;
-            timing t_all = run(&f, cases[k].grid, cases[k].weight, frames, threads);
-            timing t_p = run(&bare, cases[k].grid, cases[k].weight, frames, threads);
-            printf("  %s  %d thread%s  %.3f s/frame: particles %.3g /s, contacts %.3g /s (wall)",
-                   cases[k].name, threads, threads > 1 ? "s" : " ", t_all.wall,
-                   (double)f.particles.n / t_p.wall, (double)f.contacts.n / (t_all.wall - t_p.wall));
-            if (threads == 1)
-                printf("; %.3g /s, %.3g /s (cpu)", (double)f.particles.n / t_p.cpu,
-                       (double)f.contacts.n / (t_all.cpu - t_p.cpu));
+            timing t_all, t_p;
+            run_pair(&f, &bare, cases[k].grid, cases[k].weight, frames, threads, &t_all, &t_p);
+            printf("  %s  %d thread%s  %.3f s/frame: particles ", cases[k].name, threads,
+                   threads > 1 ? "s" : " ", t_all.wall);
+            print_rate((double)f.particles.n, t_p.wall);
+            printf(", contacts ");
+            print_rate((double)f.contacts.n, t_all.wall - t_p.wall);
+            printf(" (wall)");
+            if (threads == 1) {
+                printf("; ");
+                print_rate((double)f.particles.n, t_p.cpu);
+                printf(", ");
+                print_rate((double)f.contacts.n, t_all.cpu - t_p.cpu);
+                printf(" (cpu)");
+            }
             printf("\n");
             fflush(stdout);
         }

@@ -871,6 +871,125 @@ static void test_threads_agree(void **state)
     mimas_frame_free(&f);
 }
 
+/* Frame q of an m^3 lattice of spacing a (periodic box), with velocities and
+ * contact forces that differ from frame to frame: every particle touches its
+ * +x, +y, +z neighbour (wrapping round). */
+static void lattice_frame(mimas_frame *f, int m, double a, int q)
+{
+    size_t n;
+    double (*pos)[3] = cubic_lattice(m, a, &n);
+    mimas_box box = {{0, 0, 0}, {m * a, m * a, m * a}, 0, 0, 0, {1, 1, 1}};
+    make_frame(f, n, (const double (*)[3])pos, 0.5 * a, still, &box);
+    free(pos);
+    mimas_error err;
+    for (size_t k = 0; k < n; k++)
+        for (int c = 0; c < 3; c++)
+            f->particles.vel[k][c] = sin(0.37 * (double)k + 1.3 * c + q);
+    mimas_table_set_present(&f->contacts, &mimas_contacts_desc, MIMAS_C_FORCE, &err);
+    mimas_table_resize(&f->contacts, &mimas_contacts_desc, 3 * n, &err);
+    size_t c = 0;
+    for (size_t k = 0; k < n; k++)
+        for (size_t stride = 1; stride < n; stride *= (size_t)m, c++) {
+            f->contacts.i[c] = k;
+            f->contacts.j[c] = (k + stride) % n;
+            for (int d = 0; d < 3; d++)
+                f->contacts.force[c][d] = cos(0.11 * (double)c + d - q);
+        }
+    f->has_contacts = 1;
+}
+
+static mimas_average *average_of(const char *grid, const char *weight, int threads, int spread)
+{
+    mimas_average_options o;
+    memset(&o, 0, sizeof o);
+    mimas_error err;
+    assert_int_equal(mimas_grid_parse(&o.grid, grid, NULL, &err), MIMAS_OK);
+    assert_int_equal(mimas_weight_parse(&o.weight, weight, &err), MIMAS_OK);
+    o.threads = threads;
+    o.spread = spread;
+    mimas_average *a;
+    assert_int_equal(mimas_average_create(&a, &o, &err), MIMAS_OK);
+    return a;
+}
+
+/* Frames large enough for two threads to share them (a team of one below 2,000
+ * objects; runs of 4,096 objects dealt out in turn, so both threads get
+ * particles and contacts, and a run is cut short at the end), several of them:
+ * one and two threads give the same sums up to summation order and the total
+ * mass on the grid; with the spread (which -o always keeps) the same sums to
+ * the bit as without; a packed state merged into an empty average, and the same
+ * frames again after a reset, give the same sums to the bit. */
+static void test_threads_agree_over_frames(void **state)
+{
+    (void)state;
+    const int m = 17, frames = 3; /* 4,913 particles, 14,739 contacts */
+    const double a = 0.002, L = m * a;
+    mimas_frame f[3];
+    for (int q = 0; q < frames; q++) {
+        mimas_frame_init(&f[q]);
+        lattice_frame(&f[q], m, a, q);
+    }
+    char grid[256];
+    snprintf(grid, sizeof grid, "x=0:%.17g:5,y=0:%.17g:4,z=0:%.17g:3", L, L, L);
+    const char *weights[2] = {"bins", "gauss:w=0.003"};
+    mimas_error err;
+    for (int w = 0; w < 2; w++) {
+        mimas_average *av[4]; /* threads 1, 2; spread off, on */
+        for (int v = 0; v < 4; v++) {
+            av[v] = average_of(grid, weights[w], 1 + v % 2, v / 2);
+            for (int q = 0; q < frames; q++)
+                assert_int_equal(mimas_average_add(av[v], &f[q], &err), MIMAS_OK);
+        }
+        double ref[NSUMS], S[NSUMS];
+        for (size_t c = 0; c < 60; c++) {
+            mimas_average_sums(av[0], c, ref);
+            double scale = max_abs(ref, NSUMS);
+            for (int v = 1; v < 4; v++) {
+                mimas_average_sums(av[v], c, S);
+                for (int k = 0; k < NSUMS; k++)
+                    assert_close(S[k], ref[k], 1e-12 * scale);
+                if (v >= 2) { /* the spread changes no bit */
+                    double plain[NSUMS];
+                    mimas_average_sums(av[v - 2], c, plain);
+                    assert_memory_equal(S, plain, sizeof S);
+                }
+            }
+        }
+        /* the mass of the frame (each frame's the same) on the grid: exact for
+         * bins (the Gaussian is sampled at the cells' centres) */
+        double mass = (double)f[0].particles.n * f[0].particles.mass[0];
+        for (int v = 0; v < 4 && w == 0; v++)
+            assert_close(grid_integral(av[v], S_M), mass, 1e-12 * mass);
+        /* two threads' state packed and merged into an empty average */
+        mimas_bytes packed = {0};
+        assert_int_equal(mimas_average_pack(av[1], &packed, &err), MIMAS_OK);
+        mimas_average *merged = average_of(grid, weights[w], 1, 0);
+        assert_int_equal(mimas_average_merge(merged, packed.data, packed.n, &err), MIMAS_OK);
+        assert_int_equal(mimas_average_frames(merged), frames);
+        double again[NSUMS];
+        for (size_t c = 0; c < 60; c++) {
+            mimas_average_sums(av[1], c, S);
+            mimas_average_sums(merged, c, again);
+            assert_memory_equal(S, again, sizeof S);
+        }
+        /* a reset forgets every thread's running sums */
+        mimas_average_reset(av[1]);
+        for (int q = 0; q < frames; q++)
+            assert_int_equal(mimas_average_add(av[1], &f[q], &err), MIMAS_OK);
+        for (size_t c = 0; c < 60; c++) {
+            mimas_average_sums(merged, c, S);
+            mimas_average_sums(av[1], c, again);
+            assert_memory_equal(S, again, sizeof S);
+        }
+        free(packed.data);
+        mimas_average_free(merged);
+        for (int v = 0; v < 4; v++)
+            mimas_average_free(av[v]);
+    }
+    for (int q = 0; q < frames; q++)
+        mimas_frame_free(&f[q]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -885,6 +1004,7 @@ int main(void)
         cmocka_unit_test(test_couette_shear_rate),
         cmocka_unit_test(test_simple_shear),
         cmocka_unit_test(test_threads_agree),
+        cmocka_unit_test(test_threads_agree_over_frames),
         cmocka_unit_test(test_lucy_and_shepard),
         cmocka_unit_test(test_cylindrical_kernel_integrates_mass),
         cmocka_unit_test(test_exclude_types_as_walls),
