@@ -169,6 +169,4 @@ int RING_SEG_FN(const mimas_deposit *dp, const double aa[3], const double ab[3],
 #undef RING_TABLE_FN
 #undef RING_LANES_FN
 #undef RING_SEG_FN
-#ifdef RING_NARROW
 #undef RING_NARROW
-#endif

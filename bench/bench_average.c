@@ -4,8 +4,7 @@
  * Prints particles/s and contacts/s (contact time = time with contacts minus
  * time without), from the wall clock and, for one thread, from the process's
  * CPU time (which a loaded machine disturbs less): the shortest of F frames in
- * the steady state (after one untimed frame), the frames with and without
- * contacts alternated.
+ * the steady state (after one untimed frame).
  * --scaling: how the time grows with the kernel width (gauss x-y-z, w = d/2 .. 4d, one
  * thread, a 20^3 lattice on a 20^3 grid), with the cells a particle touches for
  * comparison: the separable deposit grows like them, ~w^3.
@@ -101,29 +100,24 @@ static void add_timed(mimas_average *a, const mimas_frame *f, timing *t)
         t->cpu = cpu;
 }
 
-/* The time of a frame with contacts (all) and of the same frame without (bare):
- * the shortest of `frames` each, after one untimed frame each, which touches the
- * fresh sums (their page faults, about 8 us a page on this virtual machine,
- * cost a first frame of a 46^3 grid 0.1-0.2 s).  On a shared machine the time
- * of a frame scatters by up to 1.5x from frame to frame; the shortest is what
- * the program takes when nothing else runs.  The two averages' frames are not
- * interleaved: a real run adds its frames to one average, whose sums stay in
- * the cache (alternating two averages of 50 MB each made every frame 1.5x
- * slower). */
-static void run_pair(const mimas_frame *f, const mimas_frame *bare, const char *grid,
-                     const char *weight, int frames, int threads, timing *all, timing *tb)
+/* The time of a frame: the shortest of `frames`, after one untimed frame, which
+ * touches the fresh sums (their page faults, about 8 us a page on this virtual
+ * machine, cost a first frame of a 46^3 grid 0.1-0.2 s).  On a shared machine
+ * the time of a frame scatters by up to 1.5x from frame to frame; the shortest
+ * is what the program takes when nothing else runs.  The frames with and
+ * without contacts are timed one average after the other, not interleaved: a
+ * real run adds its frames to one average, whose sums stay in the cache
+ * (alternating two averages of 50 MB each made every frame 1.5x slower). */
+static timing run(const mimas_frame *f, const char *grid, const char *weight, int frames,
+                  int threads)
 {
-    const mimas_frame *fr[2] = {f, bare};
-    timing *t[2] = {all, tb};
-    for (int k = 0; k < 2; k++) {
-        mimas_average *a = create(grid, weight, threads);
-        timing untimed = {HUGE_VAL, HUGE_VAL};
-        add_timed(a, fr[k], &untimed);
-        t[k]->wall = t[k]->cpu = HUGE_VAL;
-        for (int q = 0; q < frames; q++)
-            add_timed(a, fr[k], t[k]);
-        mimas_average_free(a);
-    }
+    mimas_average *a = create(grid, weight, threads);
+    timing untimed = {HUGE_VAL, HUGE_VAL}, t = {HUGE_VAL, HUGE_VAL};
+    add_timed(a, f, &untimed);
+    for (int q = 0; q < frames; q++)
+        add_timed(a, f, &t);
+    mimas_average_free(a);
+    return t;
 }
 
 /* n objects over t seconds, or "n/a" where the difference of two times is not
@@ -162,8 +156,7 @@ static int scaling(void)
     for (int k = 0; k < 5; k++) {
         char weight[64];
         snprintf(weight, sizeof weight, "gauss:w=%g", ws[k] * d);
-        timing all, p;
-        run_pair(&f, &bare, grid, weight, 3, 1, &all, &p);
+        timing all = run(&f, grid, weight, 3, 1), p = run(&bare, grid, weight, 3, 1);
         double tp = p.cpu, tc = all.cpu - p.cpu, cells = pow(2 * 3 * ws[k] + 1, 3);
         printf("  w = %.1f d: particles %.3g s, contacts %.3g s (cells in reach ~%.0f)", ws[k], tp,
                tc, cells);
@@ -212,8 +205,8 @@ int main(int argc, char **argv)
         for (int threads = 1; threads <= max_threads; threads++) {
             if (only >= 0 && (size_t)only != k)
                 continue;
-            timing t_all, t_p;
-            run_pair(&f, &bare, cases[k].grid, cases[k].weight, frames, threads, &t_all, &t_p);
+            timing t_all = run(&f, cases[k].grid, cases[k].weight, frames, threads);
+            timing t_p = run(&bare, cases[k].grid, cases[k].weight, frames, threads);
             printf("  %s  %d thread%s  %.3f s/frame: particles ", cases[k].name, threads,
                    threads > 1 ? "s" : " ", t_all.wall);
             print_rate((double)f.particles.n, t_p.wall);

@@ -9,6 +9,7 @@
  *   bench_deposit [--only CASE] [--passes P] [--length L] [--weight W] */
 #include <config.h>
 
+#include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,14 +23,6 @@ static double now(void)
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* a uniform number in [0, 1) from a 64-bit linear congruential generator: the same
- * objects on every machine */
-static double uniform(unsigned long long *s)
-{
-    *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(*s >> 11) * 0x1.0p-53;
 }
 
 enum { N_OBJECTS = 20000 };
@@ -51,21 +44,22 @@ static void run(const char *name, const char *grid, const char *weight, int segm
     mimas_deposit_init(&dp, &g, &w, &box, 0);
     int with_grad = w.kind == MIMAS_WEIGHT_GAUSS || w.kind == MIMAS_WEIGHT_LUCY;
     double(*a)[3] = malloc(sizeof *a * N_OBJECTS), (*b)[3] = malloc(sizeof *b * N_OBJECTS);
-    if (!a || !b) {
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937); /* the same objects on every machine */
+    if (!a || !b || !rng) {
         fprintf(stderr, "bench_deposit: out of memory\n");
         exit(2);
     }
-    unsigned long long s = 1;
     for (int k = 0; k < N_OBJECTS; k++) {
         double u[3], n = 0;
         for (int d = 0; d < 3; d++) {
-            a[k][d] = L * uniform(&s);
-            u[d] = uniform(&s) - 0.5;
+            a[k][d] = L * gsl_rng_uniform(rng);
+            u[d] = gsl_rng_uniform(rng) - 0.5;
             n += u[d] * u[d];
         }
         for (int d = 0; d < 3; d++)
             b[k][d] = a[k][d] + len * u[d] / sqrt(n);
     }
+    gsl_rng_free(rng);
     mimas_weights ws;
     memset(&ws, 0, sizeof ws);
     double best = HUGE_VAL, total = 0.0;

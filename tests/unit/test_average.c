@@ -840,7 +840,9 @@ static void test_exclude_types_as_walls(void **state)
     mimas_frame_free(&f);
 }
 
-/* Two threads give the single-thread result up to summation order. */
+/* Asked for two threads, a frame below the size at which a second thread starts
+ * (300 particles) gives the single-thread result (two threads sharing frames:
+ * test_threads_agree_over_frames). */
 static void test_threads_agree(void **state)
 {
     (void)state;
