@@ -165,14 +165,20 @@ void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weig
     dp->image_margin = image_margin(dp);
 }
 
-/* Bounds and centre of the cell with indices idx (no divisions). */
+/* Bounds of cell k along d (no divisions). */
+static void cell_bounds(const mimas_deposit *dp, int d, int k, double *lo, double *hi)
+{
+    const mimas_grid *g = dp->grid;
+    *lo = g->lo[d] + dp->h[d] * k;
+    *hi = k + 1 == g->n[d] ? g->hi[d] : *lo + dp->h[d];
+}
+
+/* Bounds and centre of the cell with indices idx. */
 static void cell_geometry(const mimas_deposit *dp, const int idx[3], double lo[3], double hi[3],
                           double c[3])
 {
-    const mimas_grid *g = dp->grid;
     for (int d = 0; d < 3; d++) {
-        lo[d] = g->lo[d] + dp->h[d] * idx[d];
-        hi[d] = idx[d] + 1 == g->n[d] ? g->hi[d] : lo[d] + dp->h[d];
+        cell_bounds(dp, d, idx[d], &lo[d], &hi[d]);
         c[d] = 0.5 * (lo[d] + hi[d]);
     }
 }
@@ -413,6 +419,40 @@ static double bins_cell(const mimas_deposit *dp, const int idx[3], const double 
     return ov / (o->vol * cell_volume(dp, lo, hi));
 }
 
+/* Bins on a Cartesian grid: the sphere's volumes in the block of cells it may meet, all at
+ * once (overlap_sphere_cells), kept as each_cell() with bins_cell() would keep them. */
+enum { BLOCK_AXIS = 8 };
+static int bins_sphere_block(const mimas_deposit *dp, const double x[3], const int lo[3],
+                             const int hi[3], double vol_sphere, double R, mimas_weights *ws)
+{
+    int n[3];
+    double blo[3][BLOCK_AXIS], bhi[3][BLOCK_AXIS], width[3][BLOCK_AXIS];
+    for (int d = 0; d < 3; d++) {
+        n[d] = hi[d] - lo[d] + 1;
+        for (int k = 0; k < n[d]; k++) {
+            cell_bounds(dp, d, lo[d] + k, &blo[d][k], &bhi[d][k]);
+            width[d][k] = bhi[d][k] - blo[d][k];
+        }
+    }
+    double vol[BLOCK_AXIS * BLOCK_AXIS * BLOCK_AXIS];
+    const double *pl[3] = {blo[0], blo[1], blo[2]}, *ph[3] = {bhi[0], bhi[1], bhi[2]};
+    overlap_sphere_cells(x, R, n, pl, ph, vol);
+    if (mimas_weights_reserve(ws, (size_t)n[0] * n[1] * n[2]))
+        return MIMAS_EIO;
+    const mimas_grid *g = dp->grid;
+    size_t q = 0, sy = (size_t)g->n[0], sz = sy * (size_t)g->n[1];
+    for (int k = 0; k < n[2]; k++)
+        for (int j = 0; j < n[1]; j++)
+            for (int i = 0; i < n[0]; i++, q++) {
+                /* bins_cell()'s weight: the cell's volume as cell_volume() forms it */
+                double v = vol[q] / (vol_sphere * (width[0][i] * width[1][j] * width[2][k]));
+                if (v != 0.0)
+                    dep_put(ws, (size_t)(lo[0] + i) + sy * (size_t)(lo[1] + j) +
+                                    sz * (size_t)(lo[2] + k), v);
+            }
+    return MIMAS_OK;
+}
+
 static int bins_sphere(const mimas_deposit *dp, const double x[3], const double a[3], double R,
                        mimas_weights *ws)
 {
@@ -420,6 +460,9 @@ static int bins_sphere(const mimas_deposit *dp, const double x[3], const double 
     if (!dep_candidate_box(dp, a, R, lo, hi))
         return MIMAS_OK;
     cell_object o = {x, a, NULL, NULL, R, 4.0 / 3.0 * M_PI * R * R * R};
+    if (dp->grid->kind == MIMAS_GRID_CARTESIAN && hi[0] - lo[0] < BLOCK_AXIS &&
+        hi[1] - lo[1] < BLOCK_AXIS && hi[2] - lo[2] < BLOCK_AXIS)
+        return bins_sphere_block(dp, x, lo, hi, o.vol, R, ws);
     return each_cell(dp, lo, hi, bins_cell, &o, 0, 1.0, ws);
 }
 

@@ -7,6 +7,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <string.h>
 
 #include <gsl/gsl_integration.h>
 
@@ -70,83 +71,185 @@ static double unit_corner(int n, const double *t)
     }
 }
 
+/* unit_corner() of the thresholds tx, ty, tz (NO_CUT: that axis unconstrained), computed
+ * once for each ball: *memo holds it (NaN until computed); the memo's entry for each
+ * combination of thresholds is the sum of the offsets the axes give their thresholds. */
 #define NO_CUT (-1.0)
+static double memo_corner(double *memo, double tx, double ty, double tz)
+{
+    if (isnan(*memo)) {
+        double t[3] = {tx, ty, tz}, tt[3];
+        int n = 0;
+        for (int d = 0; d < 3; d++)
+            if (t[d] != NO_CUT)
+                tt[n++] = t[d];
+        *memo = unit_corner(n, tt);
+    }
+    return *memo;
+}
+
+/* One axis of a box seen from the ball, all that depends on that axis alone: the bounds
+ * relative to the centre in units of R (l, h), whether the axis puts the box off the ball
+ * (or is not a number), how many of its bounds cut the ball, the larger square of l and h,
+ * and its interval's indicator as a signed sum of nt half-line indicators {s x > t} with
+ * t >= 0 (t is l if l >= 0 else -l, h if h > 0 else -h) or no constraint (NO_CUT), each
+ * with its offset in the memo of corner volumes (0 for no constraint). */
+enum { AXIS_OK, AXIS_OFF, AXIS_NAN };
+typedef struct axis_cut {
+    double l, h, far;
+    int state, cuts, nt;
+    int off[3];
+    double t[3], sg[3];
+} axis_cut;
+
+/* The thresholds a box's bounds give (see axis_cut) */
+static double threshold_l(double l)
+{
+    return l >= 0.0 ? l : -l;
+}
+
+static double threshold_h(double h)
+{
+    return h > 0.0 ? h : -h;
+}
+
+/* An axis with bounds l, h whose thresholds have the offsets lo and ho in the memo. */
+static void axis_setup(axis_cut *a, double l, double h, int lo, int ho)
+{
+    double tl = threshold_l(l), th = threshold_h(h);
+    a->l = l, a->h = h;
+    a->state = isnan(l) || isnan(h) ? AXIS_NAN
+               : !(l < h) || l >= 1.0 || h <= -1.0 ? AXIS_OFF : AXIS_OK;
+    if (a->state != AXIS_OK)
+        return;
+    int lc = l > -1.0, hc = h < 1.0, k = 0;
+    a->cuts = lc + hc;
+    a->far = l * l > h * h ? l * l : h * h;
+#define HALF_LINE(o, tv, s) (a->off[k] = (o), a->t[k] = (tv), a->sg[k++] = (s))
+    if (l >= 0.0) {
+        HALF_LINE(lo, tl, 1.0);
+        if (hc)
+            HALF_LINE(ho, th, -1.0);
+    } else if (h <= 0.0) {
+        HALF_LINE(ho, th, 1.0);
+        if (lc)
+            HALF_LINE(lo, tl, -1.0);
+    } else {
+        HALF_LINE(0, NO_CUT, 1.0);
+        if (lc)
+            HALF_LINE(lo, tl, -1.0);
+        if (hc)
+            HALF_LINE(ho, th, -1.0);
+    }
+#undef HALF_LINE
+    a->nt = k;
+}
+
+/* Volume of the ball of radius R in the box with axes x, y, z (bounds lo..hi, for the box
+ * inside the ball), the corner volumes from m. */
+static double ball_in_box(double R, const axis_cut *x, const axis_cut *y, const axis_cut *z,
+                          const double lo[3], const double hi[3], double *memo)
+{
+    const axis_cut *a[3] = {x, y, z};
+    for (int i = 0; i < 3; i++)
+        if (a[i]->state != AXIS_OK)
+            return a[i]->state == AXIS_NAN ? NAN : 0.0;
+    int cuts = x->cuts + y->cuts + z->cuts;
+    double V = FOUR_THIRDS_PI * R * R * R;
+    if (cuts == 0)
+        return V;
+    /* the box inside the ball */
+    if (x->far + y->far + z->far <= 1.0)
+        return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+    /* one cut plane: a cap */
+    if (cuts == 1) {
+        for (int i = 0; i < 3; i++) {
+            if (a[i]->l > -1.0)
+                return R * R * R * unit_cap(a[i]->l);
+            if (a[i]->h < 1.0)
+                return R * R * R * unit_cap(-a[i]->h);
+        }
+    }
+    /* Inclusion-exclusion: the product of the axes' signed sums; by symmetry the ball in
+     * {s_k x_k > t_k} is a unit_corner(). */
+    double sum = 0.0;
+    for (int i = 0; i < x->nt; i++)
+        for (int j = 0; j < y->nt; j++)
+            for (int k = 0; k < z->nt; k++) {
+                double w = memo_corner(memo + x->off[i] + y->off[j] + z->off[k], x->t[i],
+                                       y->t[j], z->t[k]);
+                if (w != 0.0)
+                    sum += x->sg[i] * y->sg[j] * z->sg[k] * w;
+            }
+    double v = sum * R * R * R;
+    return v > 0.0 ? (v < V ? v : V) : 0.0;
+}
 
 double overlap_sphere_box(const double c[3], double R, const double lo[3], const double hi[3])
 {
     if (!(R > 0.0))
         return R == R ? 0.0 : R;
-    double l[3], h[3];
-    int cuts = 0;
-    for (int i = 0; i < 3; i++) {
-        l[i] = (lo[i] - c[i]) / R;
-        h[i] = (hi[i] - c[i]) / R;
-        if (isnan(l[i]) || isnan(h[i]))
-            return NAN;
-        if (!(l[i] < h[i]) || l[i] >= 1.0 || h[i] <= -1.0)
-            return 0.0;
-        cuts += (l[i] > -1.0) + (h[i] < 1.0);
+    axis_cut a[3];
+    double memo[27];
+    for (int d = 0, stride = 1; d < 3; d++, stride *= 3)
+        axis_setup(&a[d], (lo[d] - c[d]) / R, (hi[d] - c[d]) / R, stride, 2 * stride);
+    for (int k = 0; k < 27; k++)
+        memo[k] = NAN;
+    return ball_in_box(R, &a[0], &a[1], &a[2], lo, hi, memo);
+}
+
+/* The slot of threshold v among the axis's thresholds t[1..*n] (equal to the bit: a
+ * threshold of -0 and one of +0 are different arguments), added if new. */
+static int threshold_slot(double *t, int *n, double v)
+{
+    for (int s = 1; s <= *n; s++)
+        if (memcmp(&t[s], &v, sizeof v) == 0)
+            return s;
+    t[++*n] = v;
+    return *n;
+}
+
+enum { CELLS_AXIS_MAX = 16, CELLS_MEMO_MAX = 1024 };
+
+void overlap_sphere_cells(const double c[3], double R, const int n[3], const double *const lo[3],
+                          const double *const hi[3], double *vol)
+{
+    size_t ncell = (size_t)n[0] * n[1] * n[2];
+    if (!(R > 0.0)) {
+        for (size_t q = 0; q < ncell; q++)
+            vol[q] = R == R ? 0.0 : R;
+        return;
     }
-    double V = FOUR_THIRDS_PI * R * R * R;
-    if (cuts == 0)
-        return V;
-    /* the box inside the ball */
-    double far = 0.0;
-    for (int i = 0; i < 3; i++)
-        far += fmax(l[i] * l[i], h[i] * h[i]);
-    if (far <= 1.0)
-        return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-    /* one cut plane: a cap */
-    if (cuts == 1) {
-        for (int i = 0; i < 3; i++) {
-            if (l[i] > -1.0)
-                return R * R * R * unit_cap(l[i]);
-            if (h[i] < 1.0)
-                return R * R * R * unit_cap(-h[i]);
+    axis_cut a[3][CELLS_AXIS_MAX];
+    double t[2 * CELLS_AXIS_MAX + 1];
+    int size = 1;
+    for (int d = 0; d < 3; d++) {
+        if (n[d] > CELLS_AXIS_MAX)
+            size = CELLS_MEMO_MAX + 1;
+        int nt = 0;
+        for (int k = 0; k < n[d] && k < CELLS_AXIS_MAX; k++) {
+            double l = (lo[d][k] - c[d]) / R, h = (hi[d][k] - c[d]) / R;
+            /* only thresholds below 1 are ever used (the others give no cut) */
+            int ls = fabs(l) < 1.0 ? threshold_slot(t, &nt, threshold_l(l)) : 0;
+            int hs = fabs(h) < 1.0 ? threshold_slot(t, &nt, threshold_h(h)) : 0;
+            axis_setup(&a[d][k], l, h, ls * size, hs * size);
         }
+        size *= nt + 1;
     }
-    /* Inclusion-exclusion: along each axis the interval indicator is a signed
-     * sum of half-line indicators {s x > t} with t >= 0 (or no constraint);
-     * by symmetry the ball in {s_k x_k > t_k} is a unit_corner(). */
-    double t[3][3], sg[3][3];
-    int nt[3];
-    for (int i = 0; i < 3; i++) {
-        int lc = l[i] > -1.0, hc = h[i] < 1.0, k = 0;
-        if (l[i] >= 0.0) {
-            t[i][k] = l[i], sg[i][k++] = 1.0;
-            if (hc)
-                t[i][k] = h[i], sg[i][k++] = -1.0;
-        } else if (h[i] <= 0.0) {
-            t[i][k] = -h[i], sg[i][k++] = 1.0;
-            if (lc)
-                t[i][k] = -l[i], sg[i][k++] = -1.0;
-        } else {
-            t[i][k] = NO_CUT, sg[i][k++] = 1.0;
-            if (lc)
-                t[i][k] = -l[i], sg[i][k++] = -1.0;
-            if (hc)
-                t[i][k] = h[i], sg[i][k++] = -1.0;
-        }
-        nt[i] = k;
-    }
-    double sum = 0.0;
-    for (int i = 0; i < nt[0]; i++)
-        for (int j = 0; j < nt[1]; j++)
-            for (int k = 0; k < nt[2]; k++) {
-                double tt[3];
-                int n = 0;
-                if (t[0][i] != NO_CUT)
-                    tt[n++] = t[0][i];
-                if (t[1][j] != NO_CUT)
-                    tt[n++] = t[1][j];
-                if (t[2][k] != NO_CUT)
-                    tt[n++] = t[2][k];
-                double w = unit_corner(n, tt);
-                if (w != 0.0)
-                    sum += sg[0][i] * sg[1][j] * sg[2][k] * w;
+    /* a ball over many cells (more thresholds than the memo holds): cell by cell */
+    int block = size <= CELLS_MEMO_MAX;
+    double memo[CELLS_MEMO_MAX];
+    for (int k = 0; block && k < size; k++)
+        memo[k] = NAN;
+    size_t q = 0;
+    for (int k = 0; k < n[2]; k++)
+        for (int j = 0; j < n[1]; j++)
+            for (int i = 0; i < n[0]; i++) {
+                double clo[3] = {lo[0][i], lo[1][j], lo[2][k]};
+                double chi[3] = {hi[0][i], hi[1][j], hi[2][k]};
+                vol[q++] = block ? ball_in_box(R, &a[0][i], &a[1][j], &a[2][k], clo, chi, memo)
+                                 : overlap_sphere_box(c, R, clo, chi);
             }
-    double v = sum * R * R * R;
-    return v > 0.0 ? fmin(v, V) : 0.0;
 }
 
 /* ---- segment and box ------------------------------------------------------ */

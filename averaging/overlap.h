@@ -21,6 +21,14 @@ extern "C" {
  * slabs and half-spaces work).  R <= 0 gives 0.  Closed form. */
 double overlap_sphere_box(const double c[3], double R, const double lo[3], const double hi[3]);
 
+/* The volumes of the ball |x - c| <= R in every cell of a block of boxes: the box
+ * (i, j, k) spans lo[d][i_d] <= x_d <= hi[d][i_d] along each axis d (i_d < n[d]), and its
+ * volume goes to vol[i + n[0] (j + n[1] k)].  Each is overlap_sphere_box() of that box to the
+ * bit; the corner volumes of the ball that neighbouring boxes share (the costly part) are
+ * computed once for the block instead of once for each box. */
+void overlap_sphere_cells(const double c[3], double R, const int n[3], const double *const lo[3],
+                          const double *const hi[3], double *vol);
+
 /* Volume of the intersection of the ball |x - c| <= R (c in Cartesian
  * coordinates whose z axis is the cylinder axis) with the cylindrical cell
  * r0 <= r <= r1, phi0 <= phi <= phi1 (radians, counterclockwise from +x;

@@ -357,6 +357,74 @@ static void test_box_brute_force(void **state)
     gsl_set_error_handler(old);
 }
 
+/* Random blocks of boxes laid out as a grid lays out its cells (each box's upper bound is its
+ * lower bound plus the spacing, the next box's lower bound the origin plus a multiple of it,
+ * which can differ in the last bit), some with the centre on a plane (thresholds of +0 and -0),
+ * some infinite, some larger than the memo holds: overlap_sphere_cells() must give every box
+ * overlap_sphere_box()'s volume to the bit, and a block that holds the ball the whole ball. */
+static void test_box_cells(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    enum { MAXN = 20 };
+    size_t boxes = 0, covered = 0;
+    for (int trial = 0; trial < 3000; trial++) {
+        int n[3];
+        double lo[3][MAXN], hi[3][MAXN], c[3];
+        double R = trial % 500 == 7 ? 0.0 : 0.02 + 0.6 * gsl_rng_uniform(rng);
+        for (int d = 0; d < 3; d++) {
+            double h = 0.1 + 0.3 * gsl_rng_uniform(rng), o = -0.5 + 0.2 * gsl_rng_uniform(rng);
+            n[d] = 1 + (int)gsl_rng_uniform_int(rng, trial % 100 == 3 ? MAXN : 6);
+            if (trial % 100 == 3) /* many cells: more thresholds than the memo holds */
+                h = 0.02, R = 0.6;
+            for (int k = 0; k < n[d]; k++) {
+                lo[d][k] = o + h * k;
+                hi[d][k] = lo[d][k] + h;
+            }
+            if (trial % 7 == 0) /* the outer cells reach out to infinity */
+                lo[d][0] = -INF, hi[d][n[d] - 1] = INF;
+            int k = (int)gsl_rng_uniform_int(rng, (unsigned long)n[d]);
+            c[d] = trial % 5 == 0 && isfinite(lo[d][k])
+                       ? lo[d][k]
+                       : o - 0.2 + (h * n[d] + 0.4) * gsl_rng_uniform(rng);
+        }
+        const double *pl[3] = {lo[0], lo[1], lo[2]}, *ph[3] = {hi[0], hi[1], hi[2]};
+        double vol[MAXN * MAXN * MAXN], sum = 0.0;
+        overlap_sphere_cells(c, R, n, pl, ph, vol);
+        size_t q = 0;
+        int holds = 1;
+        for (int d = 0; d < 3; d++)
+            holds &= lo[d][0] <= c[d] - R && hi[d][n[d] - 1] >= c[d] + R &&
+                     (trial % 7 == 0 || n[d] == 1 || hi[d][0] == lo[d][1]);
+        for (int k = 0; k < n[2]; k++)
+            for (int j = 0; j < n[1]; j++)
+                for (int i = 0; i < n[0]; i++, q++) {
+                    double blo[3] = {lo[0][i], lo[1][j], lo[2][k]};
+                    double bhi[3] = {hi[0][i], hi[1][j], hi[2][k]};
+                    double v = overlap_sphere_box(c, R, blo, bhi);
+                    assert_memory_equal(&vol[q], &v, sizeof v);
+                    sum += vol[q];
+                    boxes++;
+                }
+        if (holds && R > 0) { /* gaps of one ulp between boxes change nothing at 1e-12 */
+            assert_close(sum, ball(R), 1e-12 * ball(R));
+            covered++;
+        }
+    }
+    /* a radius or a centre that is not a number */
+    double c[3] = {0.1, NAN, 0.2}, l0[1] = {0.0}, h0[1] = {1.0}, vol[1];
+    const double *pl[3] = {l0, l0, l0}, *ph[3] = {h0, h0, h0};
+    int one[3] = {1, 1, 1};
+    overlap_sphere_cells(c, 0.5, one, pl, ph, vol);
+    assert_true(isnan(vol[0]));
+    c[1] = 0.3;
+    overlap_sphere_cells(c, NAN, one, pl, ph, vol);
+    assert_true(isnan(vol[0]));
+    print_message("# %zu boxes in 3000 blocks, %zu blocks holding the ball\n", boxes, covered);
+    assert_true(covered > 100);
+    gsl_rng_free(rng);
+}
+
 /* ---- ball and cylindrical cell ------------------------------------------------ */
 
 static void test_cyl_analytic(void **state)
@@ -783,6 +851,7 @@ int main(void)
         cmocka_unit_test(test_box_analytic),
         cmocka_unit_test(test_box_partition),
         cmocka_unit_test(test_box_brute_force),
+        cmocka_unit_test(test_box_cells),
         cmocka_unit_test(test_cyl_analytic),
         cmocka_unit_test(test_cyl_against_box),
         cmocka_unit_test(test_cyl_partition),
