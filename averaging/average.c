@@ -22,8 +22,9 @@ struct mimas_average {
     mimas_grid grid;        /* fitted to the first frame */
     size_t cells, frames;
     double *sum;            /* cells x NSUMS, summed over frames */
-    double *frame_sum;      /* cells x NSUMS, this frame */
-    double *thread_sum;     /* threads x cells x NSUMS (more than one thread) */
+    size_t used;            /* the leading sums this average uses (sums_used) */
+    double *frame_sum;      /* cells x used, this frame */
+    double *thread_sum;     /* threads x cells x used (more than one thread) */
     int threads;
     /* per-frame field statistics (Welford), cells x nfields each */
     double *f_mean, *f_m2, *f_count;
@@ -44,6 +45,24 @@ static mimas_fields_mode fields_mode(const mimas_weight *wt)
                                                            : MIMAS_FIELDS_DENSITY);
 }
 
+/* Whether the weight's particles deposit the gradients of their weights (S_G) */
+static int with_gradients(const mimas_weight *wt)
+{
+    return wt->kind == MIMAS_WEIGHT_GAUSS || wt->kind == MIMAS_WEIGHT_LUCY;
+}
+
+/* How many of the leading sums (fields.h) an average with this weight adds to: a
+ * frame's sums hold only these, so that zeroing them, filling them and adding them
+ * up moves no more memory than it must (bins: 38 of the 64). */
+static size_t sums_used(const mimas_weight *wt)
+{
+    if (wt->voronoi)
+        return NSUMS;
+    if (wt->kind == MIMAS_WEIGHT_SHEPARD)
+        return S_U + 3;
+    return with_gradients(wt) ? S_G + 12 : S_G;
+}
+
 int mimas_average_create(mimas_average **out, const mimas_average_options *o, mimas_error *err)
 {
     *out = NULL;
@@ -55,6 +74,7 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
     a->cells = o->grid_none ? 1 : mimas_grid_cells(&o->grid);
     size_t nf = mimas_fields_count();
     a->sum = calloc(a->cells * NSUMS, sizeof *a->sum);
+    a->used = sums_used(&o->weight);
     a->threads = 1;
 #ifdef _OPENMP
     a->threads = o->threads > 0 ? o->threads : omp_get_max_threads();
@@ -63,10 +83,10 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
      * more threads without the spread add their copies straight into the sum */
     int frame_sums = a->threads == 1 || o->spread;
     if (frame_sums)
-        a->frame_sum = calloc(a->cells * NSUMS, sizeof *a->frame_sum);
+        a->frame_sum = calloc(a->cells * a->used, sizeof *a->frame_sum);
     a->scratch = calloc(nf, sizeof *a->scratch);
     if (a->threads > 1)
-        a->thread_sum = calloc((size_t)a->threads * a->cells * NSUMS, sizeof *a->thread_sum);
+        a->thread_sum = calloc((size_t)a->threads * a->cells * a->used, sizeof *a->thread_sum);
     a->ws = calloc((size_t)a->threads, sizeof *a->ws);
     /* the plain cut Gaussian's jump at its cutoff carries the part kappa of a linear
      * field's gradient where the 3-D kernel is sampled at cell centres; its marginals
@@ -207,7 +227,7 @@ typedef struct particle_vals {
 /* The usual case in one tight loop: the particle block and the gradients, four
  * sums at a time (the same products and sums as element by element). */
 MIMAS_SIMD
-static void add_particle_grad(double *restrict S0, const mimas_weights *ws,
+static void add_particle_grad(double *restrict S0, size_t stride, const mimas_weights *ws,
                               const particle_vals *p)
 {
     double q[S_PARTICLE_END], qg[4];
@@ -222,7 +242,7 @@ static void add_particle_grad(double *restrict S0, const mimas_weights *ws,
         qv[m] = *(const v4d *)(q + 4 * m);
 #endif
     for (size_t k = 0; k < ws->n; k++) {
-        double *restrict S = S0 + cell[k] * NSUMS, w = wv[k];
+        double *restrict S = S0 + cell[k] * stride, w = wv[k];
         double g0 = grad[3 * k], g1 = grad[3 * k + 1], g2 = grad[3 * k + 2];
 #if defined(MIMAS_HAVE_V4D)
         for (int m = 0; m < NV; m++)
@@ -245,15 +265,15 @@ static void add_particle_grad(double *restrict S0, const mimas_weights *ws,
     }
 }
 
-static void add_particle(double *S0, const mimas_weights *ws, const particle_vals *p,
-                         int shepard, int voronoi)
+static void add_particle(double *S0, size_t stride, const mimas_weights *ws,
+                         const particle_vals *p, int shepard, int voronoi)
 {
     if (ws->has_grad && !shepard && !voronoi) {
-        add_particle_grad(S0, ws, p);
+        add_particle_grad(S0, stride, ws, p);
         return;
     }
     for (size_t k = 0; k < ws->n; k++) {
-        double *S = S0 + ws->cell[k] * NSUMS, w = ws->w[k];
+        double *S = S0 + ws->cell[k] * stride, w = ws->w[k];
         for (int m = 0; m < S_PARTICLE_END; m++)
             S[m] += p->q[m] * w;
         if (ws->has_grad) {
@@ -280,7 +300,8 @@ static void add_particle(double *S0, const mimas_weights *ws, const particle_val
 
 /* A contact's 16 sums, S_C..S_W (fields.h), four at a time. */
 MIMAS_SIMD
-static void add_contact(double *restrict S0, const mimas_weights *ws, const double *qin)
+static void add_contact(double *restrict S0, size_t stride, const mimas_weights *ws,
+                        const double *qin)
 {
     double q[16];
     memcpy(q, qin, sizeof q);
@@ -291,7 +312,7 @@ static void add_contact(double *restrict S0, const mimas_weights *ws, const doub
         q3 = *(const v4d *)(q + 12);
 #endif
     for (size_t k = 0; k < ws->n; k++) {
-        double *restrict S = S0 + cell[k] * NSUMS + S_C, w = wv[k];
+        double *restrict S = S0 + cell[k] * stride + S_C, w = wv[k];
 #if defined(MIMAS_HAVE_V4D)
         *(v4d *)S += q0 * w;
         *(v4d *)(S + 4) += q1 * w;
@@ -307,7 +328,7 @@ static void add_contact(double *restrict S0, const mimas_weights *ws, const doub
 /* One contact's stress and fabric: f acting on the particle at the end of
  * branch b, the segment from `from` to from + b. */
 static int deposit_branch(const mimas_deposit *dp, const mimas_grid *g, double *S0,
-                          mimas_weights *ws, const double from[3], const double b[3],
+                          size_t stride, mimas_weights *ws, const double from[3], const double b[3],
                           const double f[3], const double at[3])
 {
     basis B;
@@ -331,7 +352,7 @@ static int deposit_branch(const mimas_deposit *dp, const mimas_grid *g, double *
     ws->n = 0;
     if (mimas_deposit_segment(dp, from, to, ws))
         return MIMAS_EIO;
-    add_contact(S0, ws, q);
+    add_contact(S0, stride, ws, q);
     return MIMAS_OK;
 }
 
@@ -383,13 +404,13 @@ static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
  * at r, the segment from the contact point c to r (docs/theory.md §1, §6), and the
  * force as a wall force density at c. */
 static int deposit_wall_contact(const mimas_deposit *dp, const mimas_grid *g, double *S,
-                                mimas_weights *ws, const mimas_box *box, const double r[3],
+                                size_t stride, mimas_weights *ws, const mimas_box *box, const double r[3],
                                 const double c[3], const double f[3])
 {
     double b[3];
     mimas_branch(box, r, c, b);
     double from[3] = {r[0] - b[0], r[1] - b[1], r[2] - b[2]};
-    if (deposit_branch(dp, g, S, ws, from, b, f, from))
+    if (deposit_branch(dp, g, S, stride, ws, from, b, f, from))
         return MIMAS_EIO;
     double fl[3];
     basis B;
@@ -400,7 +421,7 @@ static int deposit_wall_contact(const mimas_deposit *dp, const mimas_grid *g, do
         return MIMAS_EIO;
     for (size_t k = 0; k < ws->n; k++)
         for (int m = 0; m < 3; m++)
-            S[ws->cell[k] * NSUMS + S_W + m] += fl[m] * ws->w[k];
+            S[ws->cell[k] * stride + S_W + m] += fl[m] * ws->w[k];
     return MIMAS_OK;
 }
 
@@ -437,8 +458,8 @@ static int deposit_objects(const mimas_average *a, const mimas_frame *f, const m
 {
     const mimas_particles *p = &f->particles;
     int shepard = a->opt.weight.kind == MIMAS_WEIGHT_SHEPARD, voronoi = a->opt.weight.voronoi;
-    int with_grad = a->opt.weight.kind == MIMAS_WEIGHT_GAUSS ||
-                    a->opt.weight.kind == MIMAS_WEIGHT_LUCY;
+    int with_grad = with_gradients(&a->opt.weight);
+    size_t stride = a->used;
     for (size_t k = share_first(p->n, t); k < p->n; k = share_next(k, p->n, nt)) {
         if (!a->keep[k])
             continue;
@@ -478,7 +499,7 @@ static int deposit_objects(const mimas_average *a, const mimas_frame *f, const m
         ws->n = 0;
         if (mimas_deposit_sphere(dp, p->pos[k], p->radius[k], with_grad, ws))
             return MIMAS_EIO;
-        add_particle(S, ws, &pv, shepard, voronoi);
+        add_particle(S, stride, ws, &pv, shepard, voronoi);
     }
     if (voronoi)
         return MIMAS_OK; /* the stress comes from the per-particle stresses */
@@ -494,7 +515,7 @@ static int deposit_objects(const mimas_average *a, const mimas_frame *f, const m
                            p->pos[i][2] - p->pos[j][2]};
             mimas_box_min_image(&f->box, b);
             const double *at = (c->present & MIMAS_C_POINT) ? c->point[k] : p->pos[i];
-            if (deposit_branch(dp, g, S, ws, p->pos[j], b, c->force[k], at))
+            if (deposit_branch(dp, g, S, stride, ws, p->pos[j], b, c->force[k], at))
                 return MIMAS_EIO;
             continue;
         }
@@ -504,7 +525,7 @@ static int deposit_objects(const mimas_average *a, const mimas_frame *f, const m
         mimas_contact_point(f, k, in, cp);
         for (int m = 0; m < 3; m++)
             fin[m] = in == i ? c->force[k][m] : -c->force[k][m];
-        if (deposit_wall_contact(dp, g, S, ws, &f->box, p->pos[in], cp, fin))
+        if (deposit_wall_contact(dp, g, S, stride, ws, &f->box, p->pos[in], cp, fin))
             return MIMAS_EIO;
     }
     const mimas_wall_contacts *w = &f->walls;
@@ -513,7 +534,8 @@ static int deposit_objects(const mimas_average *a, const mimas_frame *f, const m
         size_t i = w->particle[k];
         if (!a->keep[i])
             continue;
-        if (deposit_wall_contact(dp, g, S, ws, &f->box, p->pos[i], w->point[k], w->force[k]))
+        if (deposit_wall_contact(dp, g, S, stride, ws, &f->box, p->pos[i], w->point[k],
+                                 w->force[k]))
             return MIMAS_EIO;
     }
     return MIMAS_OK;
@@ -546,14 +568,14 @@ static int deposit_frame_sums(mimas_average *a, const mimas_frame *f, const mima
                               const mimas_deposit *dp)
 {
     double *S = a->frame_sum;
-    size_t nsum = a->cells * NSUMS;
+    size_t used = a->used, nsum = a->cells * used;
     if (a->threads > 1) {
         /* each thread deposits into its own sums, added up afterwards: the
          * result depends on the thread count only through summation order.
-         * Zeroing the copies and adding them up (threads x cells x NSUMS doubles,
-         * 100 MB on a 46^3 grid) are shared out among the threads too, each over its
-         * own range of sums, in the thread order of a serial sum (the same bits); the
-         * frame's own sums are kept only for the spread. */
+         * Zeroing the copies and adding them up (threads x cells x used doubles,
+         * 60 MB for bins on a 46^3 grid) are shared out among the threads too, each over
+         * its own range of cells, in the thread order of a serial sum (the same bits);
+         * the frame's own sums are kept only for the spread. */
 #ifdef _OPENMP
         int failed = 0;
 #pragma omp parallel num_threads(a->threads) if (f->particles.n + f->contacts.n >= SMALL_FRAME)
@@ -569,16 +591,18 @@ static int deposit_frame_sums(mimas_average *a, const mimas_frame *f, const mima
             int bad;
 #pragma omp atomic read
             bad = failed;
-            size_t k0 = bad ? 0 : nsum * (size_t)t / (size_t)nt;
-            size_t k1 = bad ? 0 : nsum * (size_t)(t + 1) / (size_t)nt;
-            for (size_t k = k0; k < k1; k++) {
-                double sum = 0.0;
-                for (int u = 0; u < nt; u++)
-                    sum += a->thread_sum[(size_t)u * nsum + k];
-                if (S)
-                    S[k] = sum;
-                a->sum[k] += sum;
-            }
+            size_t c0 = bad ? 0 : a->cells * (size_t)t / (size_t)nt;
+            size_t c1 = bad ? 0 : a->cells * (size_t)(t + 1) / (size_t)nt;
+            for (size_t cell = c0; cell < c1; cell++)
+                for (size_t m = 0; m < used; m++) {
+                    size_t k = cell * used + m;
+                    double sum = 0.0;
+                    for (int u = 0; u < nt; u++)
+                        sum += a->thread_sum[(size_t)u * nsum + k];
+                    if (S)
+                        S[k] = sum;
+                    a->sum[cell * NSUMS + m] += sum;
+                }
         }
         return failed ? MIMAS_EIO : MIMAS_OK;
 #endif
@@ -586,8 +610,9 @@ static int deposit_frame_sums(mimas_average *a, const mimas_frame *f, const mima
     memset(S, 0, nsum * sizeof *S);
     if (deposit_frame(a, f, g, dp, S, 0, 1))
         return MIMAS_EIO;
-    for (size_t k = 0; k < nsum; k++)
-        a->sum[k] += S[k];
+    for (size_t cell = 0; cell < a->cells; cell++)
+        for (size_t m = 0; m < used; m++)
+            a->sum[cell * NSUMS + m] += S[cell * used + m];
     return MIMAS_OK;
 }
 
@@ -612,8 +637,9 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
             double ctr[3] = {0, 0, 0};
             if (cyl)
                 mimas_grid_cell_centre(&g, cell, ctr);
-            mimas_fields_derive(&a->frame_sum[cell * NSUMS], cyl, ctr[0],
-                                fields_mode(&a->opt.weight), a->scratch);
+            double S[NSUMS] = {0}; /* the sums this average does not use are 0 */
+            memcpy(S, &a->frame_sum[cell * a->used], a->used * sizeof *S);
+            mimas_fields_derive(S, cyl, ctr[0], fields_mode(&a->opt.weight), a->scratch);
             for (size_t q = 0; q < nf; q++) {
                 double x = a->scratch[q];
                 if (isnan(x))

@@ -12,7 +12,10 @@
 
 /* primary sums per cell, each already divided by volume (a density); a
  * particle adds the block S_N..S_K (and the gradients S_G..) in one sweep, a
- * contact the block S_C..S_W */
+ * contact the block S_C..S_W.  The sums every average uses come first, those
+ * of some weights only after them (S_G: kernels with gradients, S_U: Shepard,
+ * S_VC..: Voronoi), so that a frame's sums need only the leading ones
+ * (sums_used() in average.c). */
 enum {
     S_N,            /* sum phi: number density */
     S_M,            /* sum m phi */
@@ -24,13 +27,13 @@ enum {
     S_P,            /* 3: sum m v phi */
     S_K = S_P + 3,  /* 9: sum m v (x) v phi */
     S_PARTICLE_END = S_K + 9,
-    S_G = S_PARTICLE_END, /* 12: per direction b, sum m d_b phi and sum m v_a d_b phi
-                           * (kernels only): S_GM(b), S_GP(a, b) */
-    S_C = S_G + 12, /* 9: sum f (x) b psi, contact stress */
+    S_C = S_PARTICLE_END, /* 9: sum f (x) b psi, contact stress */
     S_F = S_C + 9,  /* 6: sum n (x) n psi, fabric (symmetric: xx yy zz xy xz yz), and a 0,
                      * so that a contact adds 16 sums, four vectors of 4 */
     S_W = S_F + 7,  /* 3: sum f_wall delta(r - c): wall force density */
-    S_U = S_W + 3,  /* 3: sum v phi, for Shepard's ratio of sums */
+    S_G = S_W + 3,  /* 12: per direction b, sum m d_b phi and sum m v_a d_b phi
+                     * (kernels only): S_GM(b), S_GP(a, b) */
+    S_U = S_G + 12, /* 3: sum v phi, for Shepard's ratio of sums */
     S_VC = S_U + 3, /* sum V_cell phi: Voronoi cell volumes (--weight voronoi) */
     S_VSC,          /* the same over particles with a stress */
     S_VS,           /* 9: sum V_cell sigma phi: per-particle Voronoi stresses */
