@@ -453,6 +453,38 @@ static int bins_sphere_block(const mimas_deposit *dp, const double x[3], const i
     return MIMAS_OK;
 }
 
+/* Bins on a cylindrical grid of full rings (no phi cells): the sphere's volumes in the
+ * block of cells it may meet, ring by ring in each slab (overlap_sphere_rings), the rings'
+ * bounds those of the cells (each ring's outer bound the next one's inner bound, so that
+ * the rings meet) and the weights as bins_cell() would form them. */
+static int bins_sphere_rings(const mimas_deposit *dp, const double a[3], const int lo[3],
+                             const int hi[3], double vol_sphere, double R, mimas_weights *ws)
+{
+    int nr = hi[0] - lo[0] + 1;
+    double rp[BLOCK_AXIS + 1], vol[BLOCK_AXIS], top = 0.0;
+    for (int k = 0; k < nr; k++)
+        cell_bounds(dp, 0, lo[0] + k, &rp[k], &top);
+    rp[nr] = top;
+    if (mimas_weights_reserve(ws, (size_t)nr * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1)))
+        return MIMAS_EIO;
+    int idx[3];
+    for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
+        for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++) {
+            double clo[3], chi[3], c[3];
+            idx[0] = lo[0];
+            cell_geometry(dp, idx, clo, chi, c);
+            overlap_sphere_rings(a, R, nr, rp, clo[2], chi[2], vol);
+            for (int k = 0; k < nr; k++) {
+                idx[0] = lo[0] + k;
+                cell_geometry(dp, idx, clo, chi, c);
+                double v = vol[k] / (vol_sphere * cell_volume(dp, clo, chi));
+                if (v != 0.0)
+                    dep_put(ws, mimas_grid_index(dp->grid, idx), v);
+            }
+        }
+    return MIMAS_OK;
+}
+
 static int bins_sphere(const mimas_deposit *dp, const double x[3], const double a[3], double R,
                        mimas_weights *ws)
 {
@@ -463,6 +495,9 @@ static int bins_sphere(const mimas_deposit *dp, const double x[3], const double 
     if (dp->grid->kind == MIMAS_GRID_CARTESIAN && hi[0] - lo[0] < BLOCK_AXIS &&
         hi[1] - lo[1] < BLOCK_AXIS && hi[2] - lo[2] < BLOCK_AXIS)
         return bins_sphere_block(dp, x, lo, hi, o.vol, R, ws);
+    if (dp->grid->kind == MIMAS_GRID_CYLINDRICAL && !dp->grid->gridded[1] &&
+        hi[0] - lo[0] < BLOCK_AXIS)
+        return bins_sphere_rings(dp, a, lo, hi, o.vol, R, ws);
     return each_cell(dp, lo, hi, bins_cell, &o, 0, 1.0, ws);
 }
 

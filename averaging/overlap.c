@@ -852,6 +852,32 @@ double overlap_sphere_cylcell(const double c[3], double R, double r0, double r1,
     return vol > 0.0 ? fmin(vol, V) : 0.0;
 }
 
+void overlap_sphere_rings(const double c[3], double R, int n, const double *r, double z0,
+                          double z1, double *vol)
+{
+    /* the largest circle of the ball in the slab: the ball's part in the slab lies in
+     * d - rho <= r <= d + rho, and a ring outside that range gets an exact 0 (the two
+     * cylinders' volumes are then equal, but come from different quadratures) */
+    double w0 = z0 - c[2], w1 = z1 - c[2];
+    double wn = w0 > 0.0 ? w0 : (w1 < 0.0 ? w1 : 0.0);
+    double rho = fabs(wn) < R ? sqrt((R - wn) * (R + wn)) : 0.0, d = hypot(c[0], c[1]);
+    /* the ball inside the cylinder r <= r[k] (none inside r <= 0) */
+    double inner = NAN;
+    for (int k = 0; k < n; k++) {
+        if (!(r[k + 1] > d - rho && r[k] < d + rho)) {
+            vol[k] = isnan(d + rho + R) ? NAN : 0.0;
+            inner = NAN;
+            continue;
+        }
+        if (isnan(inner))
+            inner = r[k] > 0.0 ? overlap_sphere_cylcell(c, R, 0.0, r[k], 0.0, TWO_PI, z0, z1) : 0.0;
+        double outer = overlap_sphere_cylcell(c, R, 0.0, r[k + 1], 0.0, TWO_PI, z0, z1);
+        double v = outer - inner;
+        vol[k] = v > 0.0 ? v : (isnan(v) ? v : 0.0);
+        inner = outer;
+    }
+}
+
 /* ---- segment and cylindrical cell ----------------------------------------- */
 
 /* The fraction of a small ball about (x, y, z) inside the cell. */

@@ -617,6 +617,53 @@ static void test_cyl_brute_force(void **state)
 
 /* ---- segments --------------------------------------------------------------- */
 
+/* Rings of the full circle in a slab, by differences of cylinders (overlap_sphere_rings),
+ * against the cells one by one (overlap_sphere_cylcell): every ring within 1e-13 of the
+ * ball's volume, an exact 0 where the cell misses the ball, and rings from the axis to
+ * beyond the ball adding up to the ball's slab. */
+static void test_cyl_rings(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    enum { N = 12 };
+    double worst = 0.0;
+    int zeros = 0;
+    for (int trial = 0; trial < 400; trial++) {
+        double R = 0.1 + gsl_rng_uniform(rng), dist = 3.0 * gsl_rng_uniform(rng);
+        double phi = 2 * PI * gsl_rng_uniform(rng);
+        double c[3] = {dist * cos(phi), dist * sin(phi), gsl_rng_uniform(rng) - 0.5};
+        if (trial % 10 == 0) /* on the axis */
+            c[0] = c[1] = 0.0;
+        double h = 0.05 + 0.5 * gsl_rng_uniform(rng), r[N + 1];
+        r[0] = trial % 3 == 0 ? 0.0 : fmax(0.0, hypot(c[0], c[1]) - R - h * gsl_rng_uniform(rng));
+        for (int k = 1; k <= N; k++)
+            r[k] = r[0] + h * k;
+        double z0 = c[2] - 1.2 * R + 1.5 * R * gsl_rng_uniform(rng);
+        double z1 = z0 + (trial % 4 == 0 ? 4.0 * R : 0.8 * R * gsl_rng_uniform(rng));
+        double vol[N], sum = 0.0;
+        overlap_sphere_rings(c, R, N, r, z0, z1, vol);
+        for (int k = 0; k < N; k++) {
+            double cell = overlap_sphere_cylcell(c, R, r[k], r[k + 1], 0.0, 2 * PI, z0, z1);
+            if (cell == 0.0) {
+                assert_true(vol[k] == 0.0);
+                zeros++;
+            }
+            assert_true(vol[k] >= 0.0);
+            worst = fmax(worst, fabs(vol[k] - cell) / ball(R));
+            assert_close(vol[k], cell, 1e-13 * ball(R));
+            sum += vol[k];
+        }
+        if (r[0] == 0.0 && r[N] >= hypot(c[0], c[1]) + R)
+            assert_close(sum, slab(R, z0 - c[2], z1 - c[2]), 1e-13 * ball(R));
+    }
+    double c[3] = {NAN, 0.0, 0.0}, r[2] = {0.0, 1.0}, vol[1];
+    overlap_sphere_rings(c, 0.5, 1, r, -1.0, 1.0, vol);
+    assert_true(isnan(vol[0]));
+    print_message("# rings against cells: worst %.2g of the ball, %d empty rings\n", worst, zeros);
+    assert_true(zeros > 100);
+    gsl_rng_free(rng);
+}
+
 static void test_segment_box(void **state)
 {
     (void)state;
@@ -855,6 +902,7 @@ int main(void)
         cmocka_unit_test(test_cyl_analytic),
         cmocka_unit_test(test_cyl_against_box),
         cmocka_unit_test(test_cyl_partition),
+        cmocka_unit_test(test_cyl_rings),
         cmocka_unit_test(test_cyl_brute_force),
         cmocka_unit_test(test_segment_box),
         cmocka_unit_test(test_segment_box_partition),
