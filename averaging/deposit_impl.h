@@ -109,8 +109,9 @@ int mimas_gauss_sphere_rz(const mimas_deposit *dp, const double a[3], int with_g
 int mimas_gauss_segment_rz(const mimas_deposit *dp, const double aa[3], const double ab[3],
                            const double am[3], double reach, double scale, mimas_weights *ws);
 /* The same built for any processor, and (x86-64) with AVX2 and with AVX-512, which
- * mimas_gauss_segment_rz chooses from the processor's features: the same weights to the
- * bit (the last two to be called only where __builtin_cpu_supports says so). */
+ * mimas_gauss_segment_rz and mimas_gauss_sphere_rz choose from the processor's features:
+ * the same weights (and gradients) to the bit (the last two to be called only where
+ * __builtin_cpu_supports says so). */
 int mimas_gauss_segment_rz_portable(const mimas_deposit *dp, const double aa[3],
                                     const double ab[3], const double am[3], double reach,
                                     double scale, mimas_weights *ws);
@@ -120,6 +121,12 @@ int mimas_gauss_segment_rz_avx2(const mimas_deposit *dp, const double aa[3],
 int mimas_gauss_segment_rz_avx512(const mimas_deposit *dp, const double aa[3],
                                   const double ab[3], const double am[3], double reach,
                                   double scale, mimas_weights *ws);
+int mimas_gauss_sphere_rz_portable(const mimas_deposit *dp, const double a[3], int with_grad,
+                                   double scale, mimas_weights *ws);
+int mimas_gauss_sphere_rz_avx2(const mimas_deposit *dp, const double a[3], int with_grad,
+                               double scale, mimas_weights *ws);
+int mimas_gauss_sphere_rz_avx512(const mimas_deposit *dp, const double a[3], int with_grad,
+                                 double scale, mimas_weights *ws);
 /* The Gauss-Legendre rule along a segment of length len for the azimuthal average: 4, 8
  * or 16 points for segments up to w/2, 2w or longer (the kernel varies on the scale w;
  * Lucy's on c/3).  Returns n and sets its nodes and weights (gauss_legendre.h). */

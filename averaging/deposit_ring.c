@@ -4,8 +4,9 @@
  * grids without phi cells").  The average depends on the cell through
  * D0^2 = (r_i - rho)^2 + (z_j - z)^2 and r_i rho: the squared offsets are computed once per
  * column and row (per branch point for a segment); the cut arc is
- * mimas_gauss_ring_short's series (no exponential: the table of M_{1/2}), the longer
- * arcs near the axis mimas_kernel_ring's rule.  The values are mimas_kernel_ring's. */
+ * mimas_gauss_ring_short's series (no exponential: the table of M_{1/2}) in lanes of
+ * several cells or branch points, the longer arcs near the axis mimas_kernel_ring's rule.
+ * The values are mimas_kernel_ring's to rounding. */
 #include <config.h>
 
 #include <math.h>
@@ -46,58 +47,21 @@ static int cell_box(const mimas_deposit *dp, const double a[3], double reach, in
     return mimas_weights_reserve(ws, n) ? MIMAS_EIO : MIMAS_OK;
 }
 
-int mimas_gauss_sphere_rz(const mimas_deposit *dp, const double a[3], int with_grad,
-                          double scale, mimas_weights *ws)
-{
-    const mimas_weight *wt = dp->wt;
-    int lo[3], hi[3], ok;
-    ws->has_grad = with_grad;
-    if (cell_box(dp, a, mimas_weight_reach(wt), lo, hi, ws, &ok) || !ok)
-        return ok ? MIMAS_EIO : MIMAS_OK;
-    int nr = hi[0] - lo[0] + 1, nz = hi[2] - lo[2] + 1;
-    double *t = mimas_weights_scratch(ws, 2 * (size_t)nr + (size_t)nz);
-    if (!t)
-        return MIMAS_EIO;
-    double *rc = t, *dr2 = t + nr, *dz = t + 2 * nr;
-    double rho = hypot(a[0], a[1]);
-    for (int i = 0; i < nr; i++) {
-        rc[i] = dep_centre(dp, 0, lo[0] + i);
-        dr2[i] = (rc[i] - rho) * (rc[i] - rho);
-    }
-    for (int j = 0; j < nz; j++)
-        dz[j] = dep_centre(dp, 2, lo[2] + j) - a[2];
-    int idx[3] = {0, lo[1], 0};
-    for (int j = 0; j < nz; j++)
-        for (int i = 0; i < nr; i++) {
-            double g[2] = {0, 0};
-            double v = ring_value(wt, rc[i], rho, dz[j], dr2[i], with_grad ? g : NULL);
-            if (v == 0.0 && g[0] == 0.0 && g[1] == 0.0)
-                continue;
-            idx[0] = lo[0] + i;
-            idx[2] = lo[2] + j;
-            size_t cell = mimas_grid_index(dp->grid, idx);
-            if (with_grad)
-                dep_put_grad(ws, cell, v * scale, g[0] * scale, 0.0, g[1] * scale);
-            else
-                dep_put(ws, cell, v * scale);
-        }
-    return MIMAS_OK;
-}
-
-/* The contacts' lanes: RING_W branch points at once for one cell, branch-free in GCC's
- * vectors of RING_W doubles (4 in the portable build, two SSE2 instructions each, and in
- * the AVX2 build, one instruction each; 8 in the AVX-512 build, simd.h).  Where the arc is
- * short and far from the axis (y = X/a <= RING_LANE_Y, a >= 4 (RING_LANE_N + 2),
- * X <= RING_XMAX) the series of mimas_gauss_ring_short with a fixed RING_LANE_N + 1 terms
- * (y^{N+1} < 3e-19) and T_0 = tail M_{1/2}(X) from its table; other points inside the
- * support are flagged for ring_value.  The shifted kernel's tm = 2 asin(u_m) is the same
- * series with T_n = 2/(2n + 1).  Each build includes deposit_ring_segment.h with RING_W,
- * its vector, mask and index types RING_VT, RING_MT and RING_IT, and RING_ANY (a lane of a
- * mask set), RING_BITS (the mask as bits), RING_GATHER (the table's coefficient k at each
- * lane's row) and RING_SQRT: lane by lane the same operations in every build, and the same
- * as ring_m_half_at's and mimas_gauss_ring_short's, so the same weights to the bit.  (The
- * helpers take their vectors by address: without AVX a vector of 4 doubles is not passed
- * in registers.) */
+/* The lanes: RING_W branch points of a contact at once for one cell, or RING_W cells of a
+ * row at once for a particle (with the gradient), branch-free in GCC's vectors of RING_W
+ * doubles (4 in the portable build, two SSE2 instructions each, and in the AVX2 build,
+ * one instruction each; 8 in the AVX-512 build, simd.h).  Where the arc is short and far
+ * from the axis (y = X/a <= RING_LANE_Y, a >= 4 (RING_LANE_N + 2), X <= RING_XMAX) the
+ * series of mimas_gauss_ring_short with a fixed RING_LANE_N + 1 terms (y^{N+1} < 3e-19)
+ * and T_0 = tail M_{1/2}(X) from its table; other points or cells inside the support are
+ * flagged for ring_value.  The shifted kernel's tm = 2 asin(u_m) is the same series with
+ * T_n = 2/(2n + 1).  Each build includes deposit_ring_lanes.h with RING_W, its vector,
+ * mask and index types RING_VT, RING_MT and RING_IT, and RING_ANY (a lane of a mask set),
+ * RING_BITS (the mask as bits), RING_GATHER (the table's coefficient k at each lane's row)
+ * and RING_SQRT: lane by lane the same operations in every build, so the same weights to
+ * the bit in every build; they are mimas_gauss_ring_short's to rounding (y and 1/a from
+ * 1/(4 r rho), multiplied, and a fixed number of terms).  (The helpers take their vectors
+ * by address: without AVX a vector of 4 doubles is not passed in registers.) */
 #define RING_LANE_N 10
 #define RING_LANE_Y 0.02
 
@@ -142,8 +106,10 @@ static inline void ring_sqrt_p(const ring_v4 *Y, ring_v4 *r)
 #define RING_SQRT ring_sqrt_p
 #define RING_TABLE_FN ring_table
 #define RING_LANES_FN ring_lanes
+#define RING_CELLS_FN ring_cells
 #define RING_SEG_FN mimas_gauss_segment_rz_portable
-#include "deposit_ring_segment.h"
+#define RING_SPHERE_FN mimas_gauss_sphere_rz_portable
+#include "deposit_ring_lanes.h"
 
 #if MIMAS_X86_DISPATCH
 #pragma GCC push_options
@@ -179,8 +145,10 @@ static inline void ring_sqrt_avx2(const ring_v4 *Y, ring_v4 *r)
 #define RING_SQRT ring_sqrt_avx2
 #define RING_TABLE_FN ring_table_avx2
 #define RING_LANES_FN ring_lanes_avx2
+#define RING_CELLS_FN ring_cells_avx2
 #define RING_SEG_FN mimas_gauss_segment_rz_avx2
-#include "deposit_ring_segment.h"
+#define RING_SPHERE_FN mimas_gauss_sphere_rz_avx2
+#include "deposit_ring_lanes.h"
 #pragma GCC pop_options
 
 #pragma GCC push_options
@@ -222,8 +190,10 @@ static inline void ring_sqrt_avx512(const ring_v8 *Y, ring_v8 *r)
 #define RING_SQRT ring_sqrt_avx512
 #define RING_TABLE_FN ring_table_avx512
 #define RING_LANES_FN ring_lanes_avx512
+#define RING_CELLS_FN ring_cells_avx512
 #define RING_SEG_FN mimas_gauss_segment_rz_avx512
-#include "deposit_ring_segment.h"
+#define RING_SPHERE_FN mimas_gauss_sphere_rz_avx512
+#include "deposit_ring_lanes.h"
 #pragma GCC pop_options
 #endif
 
@@ -237,4 +207,16 @@ int mimas_gauss_segment_rz(const mimas_deposit *dp, const double aa[3], const do
         return mimas_gauss_segment_rz_avx2(dp, aa, ab, am, reach, scale, ws);
 #endif
     return mimas_gauss_segment_rz_portable(dp, aa, ab, am, reach, scale, ws);
+}
+
+int mimas_gauss_sphere_rz(const mimas_deposit *dp, const double a[3], int with_grad,
+                          double scale, mimas_weights *ws)
+{
+#if MIMAS_X86_DISPATCH
+    if (__builtin_cpu_supports("avx512f"))
+        return mimas_gauss_sphere_rz_avx512(dp, a, with_grad, scale, ws);
+    if (__builtin_cpu_supports("avx2"))
+        return mimas_gauss_sphere_rz_avx2(dp, a, with_grad, scale, ws);
+#endif
+    return mimas_gauss_sphere_rz_portable(dp, a, with_grad, scale, ws);
 }

@@ -1,8 +1,9 @@
-/* The Gaussian's contacts on r-z grids (deposit_ring.c, which includes this once for each
- * build: with RING_TABLE_FN, RING_LANES_FN and RING_SEG_FN the names of the table's lanes,
- * the series' lanes and the deposit, RING_W the lanes' width and the lane helpers, see
- * there; with RING_NARROW, the deposit that takes the branches whose rule has fewer than
- * RING_W points). */
+/* The Gaussian's particles and contacts on r-z grids in lanes of RING_W (deposit_ring.c,
+ * which includes this once for each build: with RING_TABLE_FN, RING_LANES_FN,
+ * RING_CELLS_FN, RING_SEG_FN and RING_SPHERE_FN the names of the table's lanes, the
+ * contacts' and the particles' series lanes and the two deposits, RING_W the lanes' width
+ * and the lane helpers, see there; with RING_NARROW, the deposit that takes the branches
+ * whose rule has fewer than RING_W points). */
 /* ring_m_half_at at RING_W points (X >= 0, taken as RING_XMAX beyond it), lane by lane
  * the same operations, the coefficients gathered. */
 static inline void RING_TABLE_FN(const RING_VT *Xv, RING_VT *T)
@@ -157,6 +158,130 @@ int RING_SEG_FN(const mimas_deposit *dp, const double aa[3], const double ab[3],
     return MIMAS_OK;
 }
 
+/* RING_W cells of a row (centres rc, offsets' squares dr2 = (r - rho)^2, 1/(4 r rho) irr,
+ * all at the row's z offset dz) for a particle at distance rho from the axis: 0 when none is
+ * within reach, else 1 with val the averages and, with gradients, gr and gz their
+ * derivatives in r and z (0 for the flagged lanes: those left to ring_value, whose bits are
+ * *flag).  The series of mimas_gauss_ring_short with RING_LANE_N + 1 terms as in
+ * RING_LANES_FN, with the gradient's I_1 beside I_0 and the arc end's term (arc_end_grad):
+ * d/dr = k (2 (r - rho) I_0 + 4 rho I_1) - f(R) (r - rho cos t_m)/(pi r rho sin t_m),
+ * d/ddz = k 2 dz I_0 - f(R) dz/(pi r rho sin t_m), k = -coef/(2 w^2 pi). */
+static inline int RING_CELLS_FN(const mimas_weight *wt, const double *rc, const double *dr2,
+                                const double *irr, double dz, double rho, int with_grad,
+                                double *val, double *gr, double *gz, int *flag)
+{
+    RING_VT D2, IR, R, zero = {0}, one = zero + 1.0;
+    memcpy(&D2, dr2, sizeof D2);
+    RING_VT e = wt->reach2 - (D2 + dz * dz), tiny = zero + 1e-20;
+    RING_MT in = e > zero;
+    if (!RING_ANY(&in))
+        return 0;
+    memcpy(&IR, irr, sizeof IR);
+    RING_VT X = e * wt->inv2w2, Y = e * IR;
+    X = RING_SEL(in, RING_SEL(X > tiny, X, tiny), zero);
+    Y = RING_SEL(in, RING_SEL(Y > tiny, Y, tiny), zero);
+    RING_VT IA = IR / wt->inv2w2;
+    RING_MT fl = in & ((Y > RING_LANE_Y) | (IA > 1.0 / (4.0 * (RING_LANE_N + 2))) |
+                       (X > (double)RING_XMAX));
+    RING_MT ok = in & ~fl;
+    RING_VT T0;
+    RING_TABLE_FN(&X, &T0);
+    RING_VT U = wt->tail * T0, xn = zero + wt->tail, ian = one, yn = one;
+    RING_VT s0 = zero, s1 = zero, sa = zero;
+    for (int n = 0; n <= RING_LANE_N; n++) {
+        RING_VT next = (n + 0.5) * U - xn;
+        s0 += ring_binom[n] * ian * U;
+        ian *= IA;
+        s1 += ring_binom[n] * ian * next;
+        sa += 0.5 * ring_binom[n] * ring_inv_half[n] * yn;
+        U = next;
+        xn *= X;
+        yn *= Y;
+    }
+    RING_VT sy;
+    RING_SQRT(&Y, &sy);
+    RING_VT I0 = sy * s0, V = wt->coef / M_PI * I0;
+    if (wt->shift > 0) /* minus (coef/pi) shift t_m, t_m = 2 asin(sqrt(y)) */
+        V -= wt->coef / M_PI * wt->shift * 2.0 * (sy * sa);
+    V = RING_SEL(ok, V, zero);
+    memcpy(val, &V, sizeof V);
+    if (with_grad) {
+        memcpy(&R, rc, sizeof R);
+        double k = -wt->coef * wt->inv2w2 / M_PI, fR = wt->coef * (wt->tail - wt->shift);
+        RING_VT I1 = sy * s1, Q = Y * (one - Y), sq;
+        RING_SQRT(&Q, &sq);
+        RING_VT sin_tm = 2.0 * sq, cos_tm = one - 2.0 * Y;
+        RING_VT G0 = k * (2.0 * (R - rho) * I0 + 4.0 * rho * I1), G1 = k * 2.0 * dz * I0;
+        if (fR != 0.0) {
+            RING_VT den = R * rho * RING_SEL(ok, sin_tm, one);
+            G0 += fR * (-(R - rho * cos_tm) / den) / M_PI;
+            G1 += fR * (-dz / den) / M_PI;
+        }
+        G0 = RING_SEL(ok, G0, zero);
+        G1 = RING_SEL(ok, G1, zero);
+        memcpy(gr, &G0, sizeof G0);
+        memcpy(gz, &G1, sizeof G1);
+    }
+    *flag = RING_BITS(&fl);
+    return 1;
+}
+
+int RING_SPHERE_FN(const mimas_deposit *dp, const double a[3], int with_grad, double scale,
+                   mimas_weights *ws)
+{
+    const mimas_weight *wt = dp->wt;
+    int lo[3], hi[3], ok;
+    ws->has_grad = with_grad;
+    if (cell_box(dp, a, mimas_weight_reach(wt), lo, hi, ws, &ok) || !ok)
+        return ok ? MIMAS_EIO : MIMAS_OK;
+    /* per column (padded to whole lanes with columns out of reach): the centre, the
+     * offset's square and 1/(4 r rho) (infinite on the axis: flagged); per row: the offset */
+    int nr = hi[0] - lo[0] + 1, nz = hi[2] - lo[2] + 1, np = (nr + RING_W - 1) / RING_W * RING_W;
+    double *t = mimas_weights_scratch(ws, 3 * (size_t)np + (size_t)nz);
+    if (!t)
+        return MIMAS_EIO;
+    double *rc = t, *dr2 = t + np, *irr = t + 2 * np, *dz = t + 3 * np;
+    double rho = hypot(a[0], a[1]);
+    for (int i = 0; i < np; i++) {
+        rc[i] = i < nr ? dep_centre(dp, 0, lo[0] + i) : 0.0;
+        dr2[i] = i < nr ? (rc[i] - rho) * (rc[i] - rho) : INFINITY;
+        double rr = 4.0 * rc[i] * rho;
+        irr[i] = rr > 0 ? 1.0 / rr : INFINITY;
+    }
+    for (int j = 0; j < nz; j++)
+        dz[j] = dep_centre(dp, 2, lo[2] + j) - a[2];
+    int idx[3] = {0, lo[1], 0};
+    for (int j = 0; j < nz; j++)
+        for (int i0 = 0; i0 < nr; i0 += RING_W) {
+            double val[RING_W], gr[RING_W], gz[RING_W];
+            int flag;
+            if (!RING_CELLS_FN(wt, rc + i0, dr2 + i0, irr + i0, dz[j], rho, with_grad, val, gr,
+                               gz, &flag))
+                continue;
+            for (int l = 0; l < RING_W && i0 + l < nr; l++) {
+                int i = i0 + l;
+                double v, g[2] = {0, 0};
+                if (flag >> l & 1) {
+                    v = ring_value(wt, rc[i], rho, dz[j], dr2[i], with_grad ? g : NULL);
+                } else {
+                    v = val[l];
+                    if (with_grad)
+                        g[0] = gr[l], g[1] = gz[l];
+                }
+                if (v == 0.0 && g[0] == 0.0 && g[1] == 0.0)
+                    continue;
+                idx[0] = lo[0] + i;
+                idx[2] = lo[2] + j;
+                size_t cell = mimas_grid_index(dp->grid, idx);
+                if (with_grad)
+                    dep_put_grad(ws, cell, v * scale, g[0] * scale, 0.0, g[1] * scale);
+                else
+                    dep_put(ws, cell, v * scale);
+            }
+        }
+    return MIMAS_OK;
+}
+
 /* the parameters of this build, for the next */
 #undef RING_W
 #undef RING_VT
@@ -168,5 +293,7 @@ int RING_SEG_FN(const mimas_deposit *dp, const double aa[3], const double ab[3],
 #undef RING_SQRT
 #undef RING_TABLE_FN
 #undef RING_LANES_FN
+#undef RING_CELLS_FN
 #undef RING_SEG_FN
+#undef RING_SPHERE_FN
 #undef RING_NARROW
