@@ -122,7 +122,9 @@ int main(int argc, char **argv)
                  {"kernel x-y-z particles", xyz, gauss, 0},
                  {"kernel x-y-z contacts", xyz, gauss, 1},
                  {"kernel r-z particles", rz, gauss, 0},
-                 {"kernel r-z contacts", rz, gauss, 1}};
+                 {"kernel r-z contacts", rz, gauss, 1},
+                 {"bins r-z particles", rz, "bins", 0},
+                 {"bins r-z contacts", rz, "bins", 1}};
     printf("deposits of %d objects, 1 mm cells, branches %g m, kernel %s, one thread, the "
            "shortest of %d passes:\n",
            N_OBJECTS, len, gauss, passes);
