@@ -105,6 +105,7 @@ static inline void ring_sqrt_p(const ring_v4 *Y, ring_v4 *r)
 #define RING_GATHER ring_gather_p
 #define RING_SQRT ring_sqrt_p
 #define RING_TABLE_FN ring_table
+#define RING_REACH_FN ring_reach
 #define RING_LANES_FN ring_lanes
 #define RING_CELLS_FN ring_cells
 #define RING_SEG_FN mimas_gauss_segment_rz_portable
@@ -144,6 +145,7 @@ static inline void ring_sqrt_avx2(const ring_v4 *Y, ring_v4 *r)
 #define RING_GATHER ring_gather_avx2
 #define RING_SQRT ring_sqrt_avx2
 #define RING_TABLE_FN ring_table_avx2
+#define RING_REACH_FN ring_reach_avx2
 #define RING_LANES_FN ring_lanes_avx2
 #define RING_CELLS_FN ring_cells_avx2
 #define RING_SEG_FN mimas_gauss_segment_rz_avx2
@@ -189,6 +191,7 @@ static inline void ring_sqrt_avx512(const ring_v8 *Y, ring_v8 *r)
 #define RING_GATHER ring_gather_avx512
 #define RING_SQRT ring_sqrt_avx512
 #define RING_TABLE_FN ring_table_avx512
+#define RING_REACH_FN ring_reach_avx512
 #define RING_LANES_FN ring_lanes_avx512
 #define RING_CELLS_FN ring_cells_avx512
 #define RING_SEG_FN mimas_gauss_segment_rz_avx512

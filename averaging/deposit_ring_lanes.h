@@ -1,7 +1,8 @@
 /* The Gaussian's particles and contacts on r-z grids in lanes of RING_W (deposit_ring.c,
- * which includes this once for each build: with RING_TABLE_FN, RING_LANES_FN,
- * RING_CELLS_FN, RING_SEG_FN and RING_SPHERE_FN the names of the table's lanes, the
- * contacts' and the particles' series lanes and the two deposits, RING_W the lanes' width
+ * which includes this once for each build: with RING_TABLE_FN, RING_REACH_FN,
+ * RING_LANES_FN, RING_CELLS_FN, RING_SEG_FN and RING_SPHERE_FN the names of the table's
+ * lanes, the lanes' common set-up, the contacts' and the particles' series lanes and the
+ * two deposits, RING_W the lanes' width
  * and the lane helpers, see there; with RING_NARROW, the deposit that takes the branches
  * whose rule has fewer than RING_W points). */
 /* ring_m_half_at at RING_W points (X >= 0, taken as RING_XMAX beyond it), lane by lane
@@ -25,30 +26,45 @@ static inline void RING_TABLE_FN(const RING_VT *Xv, RING_VT *T)
     *T = lo + t2 * t2 * hi;
 }
 
+/* The lanes' series variables from e = R^2 - D0^2 and 1/(4 r rho) (irr): 0 when no lane
+ * is within reach (e > 0), else 1 with *in those that are, X = e/2w^2 and y = e irr (at
+ * least 1e-20 where positive: their powers stay normal numbers, and a power below 1e-220
+ * changes nothing; 0 outside reach), 1/a = irr 2w^2, T_0 = M_{1/2}(X) from the table, and
+ * *fl the lanes within reach left to ring_value (y > RING_LANE_Y, a < 4 (RING_LANE_N + 2),
+ * X > RING_XMAX). */
+static inline int RING_REACH_FN(const mimas_weight *wt, const RING_VT *e, const double *irr,
+                                RING_MT *in, RING_MT *fl, RING_VT *X, RING_VT *Y, RING_VT *IA,
+                                RING_VT *T0)
+{
+    RING_VT IR, zero = {0}, tiny = zero + 1e-20;
+    *in = *e > zero;
+    if (!RING_ANY(in))
+        return 0;
+    memcpy(&IR, irr, sizeof IR);
+    *X = *e * wt->inv2w2;
+    *Y = *e * IR;
+    *X = RING_SEL(*in, RING_SEL(*X > tiny, *X, tiny), zero);
+    *Y = RING_SEL(*in, RING_SEL(*Y > tiny, *Y, tiny), zero);
+    *IA = IR / wt->inv2w2; /* 1/a, a = 4 r rho/2w^2 */
+    *fl = *in & ((*Y > RING_LANE_Y) | (*IA > 1.0 / (4.0 * (RING_LANE_N + 2))) |
+                 (*X > (double)RING_XMAX));
+    RING_TABLE_FN(X, T0);
+    return 1;
+}
+
 /* RING_W branch points for one cell: 0 when none is within reach, else 1 with val their
  * averages (0 for the flagged ones) and *flag the bits of the lanes left to ring_value. */
 static inline int RING_LANES_FN(const mimas_deposit *dp, const double *dr2, const double *dz,
                                 const double *irr, double norm, double *val, int *flag)
 {
     const mimas_weight *wt = dp->wt;
-    RING_VT D2, Z, IR, zero = {0}, one = zero + 1.0;
+    RING_VT D2, Z, zero = {0}, one = zero + 1.0, X, Y, IA, T0;
+    RING_MT in, fl;
     memcpy(&D2, dr2, sizeof D2);
     memcpy(&Z, dz, sizeof Z);
-    RING_VT e = wt->reach2 - (D2 + Z * Z), tiny = zero + 1e-20;
-    RING_MT in = e > zero;
-    if (!RING_ANY(&in))
+    RING_VT e = wt->reach2 - (D2 + Z * Z);
+    if (!RING_REACH_FN(wt, &e, irr, &in, &fl, &X, &Y, &IA, &T0))
         return 0; /* no point within reach of the cell */
-    memcpy(&IR, irr, sizeof IR);
-    /* at least 1e-20 where positive: their powers stay normal numbers (a power
-     * below 1e-220 changes nothing) */
-    RING_VT X = e * wt->inv2w2, Y = e * IR;
-    X = RING_SEL(in, RING_SEL(X > tiny, X, tiny), zero);
-    Y = RING_SEL(in, RING_SEL(Y > tiny, Y, tiny), zero);
-    RING_VT IA = IR / wt->inv2w2; /* 1/a, a = 4 r rho/2w^2 */
-    RING_MT fl = in & ((Y > RING_LANE_Y) | (IA > 1.0 / (4.0 * (RING_LANE_N + 2))) |
-                       (X > (double)RING_XMAX));
-    RING_VT T0;
-    RING_TABLE_FN(&X, &T0);
     RING_VT U = wt->tail * T0, xn = zero + wt->tail, ian = one, s0 = zero, V;
     if (wt->shift != 0.0) { /* the shifted kernel: its shift times t_m's series too */
         RING_VT yn = one, sa = zero;
@@ -170,38 +186,32 @@ static inline int RING_CELLS_FN(const mimas_weight *wt, const double *rc, const 
                                 const double *irr, double dz, double rho, int with_grad,
                                 double *val, double *gr, double *gz, int *flag)
 {
-    RING_VT D2, IR, R, zero = {0}, one = zero + 1.0;
+    RING_VT D2, R, zero = {0}, one = zero + 1.0, X, Y, IA, T0;
+    RING_MT in, fl;
     memcpy(&D2, dr2, sizeof D2);
-    RING_VT e = wt->reach2 - (D2 + dz * dz), tiny = zero + 1e-20;
-    RING_MT in = e > zero;
-    if (!RING_ANY(&in))
+    RING_VT e = wt->reach2 - (D2 + dz * dz);
+    if (!RING_REACH_FN(wt, &e, irr, &in, &fl, &X, &Y, &IA, &T0))
         return 0;
-    memcpy(&IR, irr, sizeof IR);
-    RING_VT X = e * wt->inv2w2, Y = e * IR;
-    X = RING_SEL(in, RING_SEL(X > tiny, X, tiny), zero);
-    Y = RING_SEL(in, RING_SEL(Y > tiny, Y, tiny), zero);
-    RING_VT IA = IR / wt->inv2w2;
-    RING_MT fl = in & ((Y > RING_LANE_Y) | (IA > 1.0 / (4.0 * (RING_LANE_N + 2))) |
-                       (X > (double)RING_XMAX));
     RING_MT ok = in & ~fl;
-    RING_VT T0;
-    RING_TABLE_FN(&X, &T0);
     RING_VT U = wt->tail * T0, xn = zero + wt->tail, ian = one, yn = one;
     RING_VT s0 = zero, s1 = zero, sa = zero;
+    int shifted = wt->shift > 0;
     for (int n = 0; n <= RING_LANE_N; n++) {
         RING_VT next = (n + 0.5) * U - xn;
         s0 += ring_binom[n] * ian * U;
         ian *= IA;
-        s1 += ring_binom[n] * ian * next;
-        sa += 0.5 * ring_binom[n] * ring_inv_half[n] * yn;
+        s1 += ring_binom[n] * ian * next; /* only the gradient's */
+        if (shifted) {
+            sa += 0.5 * ring_binom[n] * ring_inv_half[n] * yn;
+            yn *= Y;
+        }
         U = next;
         xn *= X;
-        yn *= Y;
     }
     RING_VT sy;
     RING_SQRT(&Y, &sy);
     RING_VT I0 = sy * s0, V = wt->coef / M_PI * I0;
-    if (wt->shift > 0) /* minus (coef/pi) shift t_m, t_m = 2 asin(sqrt(y)) */
+    if (shifted) /* minus (coef/pi) shift t_m, t_m = 2 asin(sqrt(y)) */
         V -= wt->coef / M_PI * wt->shift * 2.0 * (sy * sa);
     V = RING_SEL(ok, V, zero);
     memcpy(val, &V, sizeof V);
@@ -292,6 +302,7 @@ int RING_SPHERE_FN(const mimas_deposit *dp, const double a[3], int with_grad, do
 #undef RING_GATHER
 #undef RING_SQRT
 #undef RING_TABLE_FN
+#undef RING_REACH_FN
 #undef RING_LANES_FN
 #undef RING_CELLS_FN
 #undef RING_SEG_FN
