@@ -433,19 +433,15 @@ static inline void plane_rows_at(const double *dx1, const double *qa1, const dou
 /* ---- the line integral, twice: for any processor, and with AVX2 -------------------- */
 
 #define SEG_FN mimas_gauss_segment_xyz_portable
-#define SEG_AVX2 0
+#define SEG_LANES 1
 #include "deposit_gauss_segment.h"
 #undef SEG_FN
-#undef SEG_AVX2
-
-#if MIMAS_X86_DISPATCH
-#pragma GCC push_options
-#pragma GCC target("avx2")
+#undef SEG_LANES
 
 /* The cells where the cut ball cuts the segment, queued as the rows are classified (a row
- * has one or two at either end) and evaluated four at a time: each cell's index and what
- * shell_cell takes of it (|r - a|^2, |r - b|^2, the foot t, the Gaussian factors about a
- * and b). */
+ * has one or two at either end) and evaluated several at a time (the vector builds'
+ * cut_flush4, cut_flush8): each cell's index and what shell_cell takes of it (|r - a|^2,
+ * |r - b|^2, the foot t, the Gaussian factors about a and b). */
 typedef struct cut_queue {
     size_t *cell;
     double *e, *qb, *t, *ea, *eb;
@@ -464,81 +460,65 @@ static inline void cut_push(cut_queue *q, size_t cell, double e, double qb, doub
     q->eb[k] = eb;
 }
 
-/* tab_eval at four arguments 0 <= x (lane by lane from H's table where h, else G's): the
- * same operations, the coefficients gathered. */
-static inline __m256d tab_eval4(__m256d x, __m256d h)
+/* What the vector builds' row_classify takes: the segment's b_x, |b|^2, 1/|b|^2 and R^2,
+ * and the row's (across x: (r - a).b, |r - a|^2, |r - b|^2, R^2 less the latter two). */
+typedef struct row_reach {
+    double bx, l2, inv_l2, R2, tyz, qay, qby, ra, rb;
+} row_reach;
+
+static inline void row_reach_across(row_reach *rr, double qay, double qby, double tyz)
 {
-    __m128i m = _mm256_cvttpd_epi32(_mm256_mul_pd(x, _mm256_set1_pd(64.0)));
-    m = _mm_min_epi32(m, _mm_set1_epi32(GT_N - 1));
-    __m256d mid = _mm256_mul_pd(_mm256_add_pd(_mm256_cvtepi32_pd(m), _mm256_set1_pd(0.5)),
-                                _mm256_set1_pd(GT_DU));
-    __m256d d = _mm256_sub_pd(x, mid);
-    __m128i tab = _mm256_cvttpd_epi32(_mm256_and_pd(h, _mm256_set1_pd((double)GT_N)));
-    __m128i row = _mm_mullo_epi32(_mm_add_epi32(m, tab), _mm_set1_epi32(GT_DEG + 1));
-    const double *base = &ghtab[0][0][0];
-    __m256d v = _mm256_i32gather_pd(base + GT_DEG, row, 8);
-    for (int k = GT_DEG - 1; k >= 0; k--)
-        v = _mm256_add_pd(_mm256_mul_pd(v, d), _mm256_i32gather_pd(base + k, row, 8));
-    return v;
+    rr->tyz = tyz;
+    rr->qay = qay;
+    rr->qby = qby;
+    rr->ra = rr->R2 - qay;
+    rr->rb = rr->R2 - qby;
 }
 
-/* Evaluates the queued cells four at a time, shell_cell's operations lane by lane, and
- * puts those with a weight; a last group of fewer than four only when all (else it stays,
- * moved to the front). */
-static void cut_flush4(cut_queue *q, const shell_consts *sc, double len, int all,
-                       dep_cursor *cur)
+/* the helper f of the build of SEG_LANES lanes (f4, f8), and the names
+ * deposit_gauss_lanes.h takes (each build defines seg_v4, seg_bits4, ... or the same
+ * with 8) */
+#define SEG_CAT_(f, n) f##n
+#define SEG_CAT(f, n) SEG_CAT_(f, n)
+#define SEG_V(f) SEG_CAT(f, SEG_LANES)
+#define SEG_VT SEG_V(seg_v)
+#define SEG_MT SEG_V(seg_m)
+#define SEG_IT SEG_V(seg_i)
+#define SEG_BITS SEG_V(seg_bits)
+#define SEG_SEL SEG_V(seg_sel)
+#define SEG_GATHER SEG_V(seg_gather)
+#define SEG_SQRT SEG_V(seg_sqrt)
+#define SEG_PACK SEG_V(seg_pack)
+#define SEG_PACK_CELLS SEG_V(seg_pack_cells)
+#define SEG_PACK_RUN SEG_V(seg_pack_run)
+
+#if MIMAS_X86_DISPATCH
+/* The vector builds: deposit_gauss_lanes.h's helpers with four lanes (AVX2) and with eight
+ * (AVX-512; a row of a kernel of w = h and cutoff 3 has eight cells or fewer), then the
+ * line integral that calls them. */
+#pragma GCC push_options
+#pragma GCC target("avx2")
+typedef double seg_v4 __attribute__((vector_size(32)));
+typedef long long seg_m4 __attribute__((vector_size(32)));
+typedef int seg_i4 __attribute__((vector_size(16)));
+
+static inline int seg_bits4(seg_m4 m)
 {
-    int n = q->n, done = all ? n : n & ~3;
-    for (int m = n; all && (m & 3); m++) /* lanes that give 0: h^2 = R^2 */
-        cut_push(q, 0, sc->R2, sc->R2, 0.0, 0.0, 0.0);
-    const __m256d zero = _mm256_setzero_pd(), R2 = _mm256_set1_pd(sc->R2);
-    const __m256d lenv = _mm256_set1_pd(len), k = _mm256_set1_pd(sc->k);
-    const __m256d tail = _mm256_set1_pd(sc->tail), tail2 = _mm256_set1_pd(2.0 * sc->tail);
-    const __m256d scale = _mm256_set1_pd(sc->scale), shs = _mm256_set1_pd(sc->shift_scale);
-    for (int i = 0; i < done; i += 4) {
-        __m256d e = _mm256_loadu_pd(q->e + i), qb = _mm256_loadu_pd(q->qb + i);
-        __m256d t = _mm256_loadu_pd(q->t + i);
-        __m256d h2 = _mm256_sub_pd(e, _mm256_mul_pd(t, t));
-        h2 = _mm256_blendv_pd(h2, zero, _mm256_cmp_pd(h2, zero, _CMP_LT_OQ));
-        __m256d valid = _mm256_cmp_pd(h2, R2, _CMP_LT_OQ), a_in = _mm256_cmp_pd(e, R2, _CMP_LT_OQ);
-        __m256d end = _mm256_or_pd(a_in, _mm256_cmp_pd(qb, R2, _CMP_LT_OQ));
-        __m256d across = _mm256_and_pd(_mm256_cmp_pd(t, zero, _CMP_GT_OQ),
-                                       _mm256_cmp_pd(t, lenv, _CMP_LT_OQ));
-        __m256d keep = _mm256_and_pd(valid, _mm256_or_pd(end, across));
-        __m256d c = _mm256_sqrt_pd(_mm256_blendv_pd(zero, _mm256_sub_pd(R2, h2), valid));
-        /* the foot from the end inside the ball (a's when both are), its factor */
-        __m256d tp = _mm256_blendv_pd(_mm256_sub_pd(lenv, t), t, a_in);
-        __m256d e_end = _mm256_blendv_pd(_mm256_loadu_pd(q->eb + i), _mm256_loadu_pd(q->ea + i),
-                                         a_in);
-        __m256d neg = _mm256_cmp_pd(tp, zero, _CMP_LT_OQ);
-        __m256d abs_tp = _mm256_blendv_pd(tp, _mm256_xor_pd(tp, _mm256_set1_pd(-0.0)), neg);
-        __m256d T1 = tab_eval4(_mm256_and_pd(keep, _mm256_mul_pd(c, k)), _mm256_and_pd(end, neg));
-        __m256d T2 = tab_eval4(_mm256_and_pd(_mm256_and_pd(keep, end), _mm256_mul_pd(abs_tp, k)),
-                               neg);
-        __m256d sum = _mm256_add_pd(_mm256_mul_pd(tail, T1), _mm256_mul_pd(e_end, T2));
-        __m256d tails = _mm256_sub_pd(_mm256_mul_pd(e_end, T2), _mm256_mul_pd(tail, T1));
-        __m256d v = _mm256_blendv_pd(_mm256_mul_pd(tail2, T1), _mm256_blendv_pd(sum, tails, neg),
-                                     end);
-        __m256d chord = _mm256_blendv_pd(_mm256_mul_pd(_mm256_set1_pd(2.0), c),
-                                         _mm256_add_pd(tp, c), end);
-        __m256d w = _mm256_and_pd(keep, _mm256_sub_pd(_mm256_mul_pd(scale, v),
-                                                      _mm256_mul_pd(shs, chord)));
-        double wv[4];
-        _mm256_storeu_pd(wv, w);
-        for (int u = 0; u < 4 && i + u < n; u++)
-            if (wv[u] != 0.0)
-                dep_cursor_put(cur, q->cell[i + u], wv[u]);
-    }
-    q->n = 0; /* the rest to the front (done >= where each goes) */
-    for (int m = done; m < n; m++)
-        cut_push(q, q->cell[m], q->e[m], q->qb[m], q->t[m], q->ea[m], q->eb[m]);
+    return _mm256_movemask_pd((__m256d)m);
 }
 
-/* Puts the cells of the bits of m (of the four from cell `first`): ayz ea vrow - sh, the
- * weights of uncut cells, four at a time; the selected lanes moved to the front (a
- * permutation per mask) and all four written, the cursor moved on by those selected (the
- * list has room for 4 more than its cells). */
-static const int32_t put4_perm[16][8] = {
+static inline void seg_gather4(const double *base, const seg_i4 *row, seg_v4 *c)
+{
+    *c = (seg_v4)_mm256_i32gather_pd(base, (__m128i)*row, 8);
+}
+
+static inline void seg_sqrt4(seg_v4 x, seg_v4 *r)
+{
+    *r = (seg_v4)_mm256_sqrt_pd((__m256d)x);
+}
+
+/* The lanes of the bits of m moved to the front: a permutation of 32-bit halves per mask */
+static const int32_t pack4_perm[16][8] = {
     {0, 1, 2, 3, 4, 5, 6, 7}, {0, 1, 2, 3, 4, 5, 6, 7}, {2, 3, 0, 1, 4, 5, 6, 7},
     {0, 1, 2, 3, 4, 5, 6, 7}, {4, 5, 0, 1, 2, 3, 6, 7}, {0, 1, 4, 5, 2, 3, 6, 7},
     {2, 3, 4, 5, 0, 1, 6, 7}, {0, 1, 2, 3, 4, 5, 6, 7}, {6, 7, 0, 1, 2, 3, 4, 5},
@@ -546,101 +526,93 @@ static const int32_t put4_perm[16][8] = {
     {4, 5, 6, 7, 0, 1, 2, 3}, {0, 1, 4, 5, 6, 7, 2, 3}, {2, 3, 4, 5, 6, 7, 0, 1},
     {0, 1, 2, 3, 4, 5, 6, 7}};
 
-static inline void put4(dep_cursor *cur, size_t first, int m, double ayz, const double *ea,
-                        const double *vrow, double sh)
+static inline void seg_pack4(double *dst, seg_v4 v, int m)
 {
-    __m256d w = _mm256_sub_pd(_mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(ayz),
-                                                          _mm256_loadu_pd(ea)),
-                                            _mm256_loadu_pd(vrow)),
-                              _mm256_set1_pd(sh));
-    __m256i cell = _mm256_add_epi64(_mm256_set1_epi64x((long long)first),
-                                    _mm256_setr_epi64x(0, 1, 2, 3));
-    __m256i p = _mm256_loadu_si256((const __m256i *)put4_perm[m]);
-    _mm256_storeu_pd(cur->w, _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(w), p)));
-    _mm256_storeu_si256((__m256i *)cur->cell, _mm256_permutevar8x32_epi32(cell, p));
-    int k = __builtin_popcount((unsigned)m);
-    cur->w += k;
-    cur->cell += k;
+    __m256i p = _mm256_loadu_si256((const __m256i *)pack4_perm[m]);
+    __m256 x = _mm256_castpd_ps((__m256d)v);
+    _mm256_storeu_pd(dst, _mm256_castps_pd(_mm256_permutevar8x32_ps(x, p)));
 }
 
-/* Queues the cells of the bits of m (of the four from cell `first` of a row): what
- * shell_cell takes of each, |r - a|^2 = qa + qay, |r - b|^2 = qb + qby, the foot
- * (dx b_x + tyz) / len and the factors ea eayz, eb ebyz, four at a time (the same
- * operations as cut_push's callers lane by lane), the selected lanes moved to the front
- * and all four written (the queue has room for 4 more than a row's cells). */
-static inline void cut_push4(cut_queue *q, size_t first, int m, const double *qa,
-                             const double *qb, const double *dx, const double *ea,
-                             const double *eb, double qay, double qby, double bx, double tyz,
-                             double inv_len, double eayz, double ebyz)
+static inline void seg_pack_i4(size_t *dst, __m256i c, int m)
 {
-    __m256i p = _mm256_loadu_si256((const __m256i *)put4_perm[m]);
-#define CUT_STORE(dst, v)                                                                         \
-    _mm256_storeu_pd((dst) + q->n,                                                            \
-                     _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(v), p)))
-    __m256d t = _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(dx), _mm256_set1_pd(bx)),
-                              _mm256_set1_pd(tyz));
-    CUT_STORE(q->e, _mm256_add_pd(_mm256_loadu_pd(qa), _mm256_set1_pd(qay)));
-    CUT_STORE(q->qb, _mm256_add_pd(_mm256_loadu_pd(qb), _mm256_set1_pd(qby)));
-    CUT_STORE(q->t, _mm256_mul_pd(t, _mm256_set1_pd(inv_len)));
-    CUT_STORE(q->ea, _mm256_mul_pd(_mm256_loadu_pd(ea), _mm256_set1_pd(eayz)));
-    CUT_STORE(q->eb, _mm256_mul_pd(_mm256_loadu_pd(eb), _mm256_set1_pd(ebyz)));
-#undef CUT_STORE
-    __m256i cell = _mm256_add_epi64(_mm256_set1_epi64x((long long)first),
-                                    _mm256_setr_epi64x(0, 1, 2, 3));
-    _mm256_storeu_si256((__m256i *)(q->cell + q->n), _mm256_permutevar8x32_epi32(cell, p));
-    q->n += __builtin_popcount((unsigned)m);
+    __m256i p = _mm256_loadu_si256((const __m256i *)pack4_perm[m]);
+    _mm256_storeu_si256((__m256i *)dst, _mm256_permutevar8x32_epi32(c, p));
 }
 
-/* What row_classify4 takes, in every lane: the segment's (b_x, |b|^2, 1/|b|^2, R^2) and
- * the row's (across x: (r - a).b, |r - a|^2, |r - b|^2, R^2 less the latter two). */
-typedef struct row_reach4 {
-    __m256d bx, l2, inv_l2, R2, tyz, qay, qby, ra, rb;
-} row_reach4;
-
-static inline row_reach4 row_reach4_at(double bx, double l2, double inv_l2, double R2)
+static inline void seg_pack_cells4(size_t *dst, const size_t *cell, int m)
 {
-    __m256d z = _mm256_setzero_pd();
-    return (row_reach4){_mm256_set1_pd(bx), _mm256_set1_pd(l2), _mm256_set1_pd(inv_l2),
-                        _mm256_set1_pd(R2), z, z, z, z, z};
+    seg_pack_i4(dst, _mm256_loadu_si256((const __m256i *)cell), m);
 }
 
-static inline void row_reach4_across(row_reach4 *rr, double qay, double qby, double tyz,
-                                     double R2)
+static inline void seg_pack_run4(size_t *dst, size_t first, int m)
 {
-    rr->tyz = _mm256_set1_pd(tyz);
-    rr->qay = _mm256_set1_pd(qay);
-    rr->qby = _mm256_set1_pd(qby);
-    rr->ra = _mm256_set1_pd(R2 - qay);
-    rr->rb = _mm256_set1_pd(R2 - qby);
+    seg_pack_i4(dst, _mm256_add_epi64(_mm256_set1_epi64x((long long)first),
+                                      _mm256_setr_epi64x(0, 1, 2, 3)), m);
 }
 
-/* Four cells of a row (their offsets dx from a along x, squared offsets qa, qb from a and b
- * along x): the bits of those within R of the segment (returned) and, of those, of the
- * ones with the whole segment within R (*uncut).  With t = (r - a).b the distance^2 is
- * |r - a|^2 for t <= 0, |r - b|^2 for t >= |b|^2, else |r - a|^2 - t^2/|b|^2; whole when
- * (c - a_x)^2 < R^2 - |r - a|^2 across x and the same about b.  The cells past the row's
- * end have dx = 0 and qa = qb = infinity: never within R. */
-static inline int row_classify4(const row_reach4 *rr, const double *dx, const double *qa,
-                                const double *qb, int *uncut)
+static inline seg_v4 seg_sel4(seg_m4 m, seg_v4 a, seg_v4 b)
 {
-    __m256d A = _mm256_loadu_pd(qa), B = _mm256_loadu_pd(qb);
-    __m256d t = _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(dx), rr->bx), rr->tyz);
-    __m256d qai = _mm256_add_pd(A, rr->qay);
-    __m256d d2 = _mm256_sub_pd(qai, _mm256_mul_pd(_mm256_mul_pd(t, t), rr->inv_l2));
-    d2 = _mm256_blendv_pd(d2, _mm256_add_pd(B, rr->qby), _mm256_cmp_pd(t, rr->l2, _CMP_GE_OQ));
-    d2 = _mm256_blendv_pd(d2, qai, _mm256_cmp_pd(t, _mm256_setzero_pd(), _CMP_LE_OQ));
-    __m256d within = _mm256_cmp_pd(d2, rr->R2, _CMP_LT_OQ);
-    __m256d whole = _mm256_and_pd(_mm256_cmp_pd(A, rr->ra, _CMP_LT_OQ),
-                                  _mm256_cmp_pd(B, rr->rb, _CMP_LT_OQ));
-    *uncut = _mm256_movemask_pd(_mm256_and_pd(within, whole));
-    return _mm256_movemask_pd(within);
+    return (seg_v4)_mm256_blendv_pd((__m256d)b, (__m256d)a, (__m256d)m);
 }
 
-#define SEG_FN segment_xyz_avx2
-#define SEG_AVX2 1
+#define SEG_LANES 4
+#include "deposit_gauss_lanes.h"
+#define SEG_FN mimas_gauss_segment_xyz_avx2
 #include "deposit_gauss_segment.h"
 #undef SEG_FN
-#undef SEG_AVX2
+#undef SEG_LANES
+#pragma GCC pop_options
+
+#pragma GCC push_options
+#pragma GCC target("avx2,avx512f")
+typedef double seg_v8 __attribute__((vector_size(64)));
+typedef long long seg_m8 __attribute__((vector_size(64)));
+typedef int seg_i8 __attribute__((vector_size(32)));
+
+static inline int seg_bits8(seg_m8 m)
+{
+    return (int)_mm512_test_epi64_mask((__m512i)m, (__m512i)m);
+}
+
+static inline void seg_gather8(const double *base, const seg_i8 *row, seg_v8 *c)
+{
+    *c = (seg_v8)_mm512_i32gather_pd((__m256i)*row, base, 8);
+}
+
+static inline void seg_sqrt8(seg_v8 x, seg_v8 *r)
+{
+    *r = (seg_v8)_mm512_sqrt_pd((__m512d)x);
+}
+
+static inline void seg_pack8(double *dst, seg_v8 v, int m)
+{
+    _mm512_storeu_pd(dst, _mm512_maskz_compress_pd((__mmask8)m, (__m512d)v));
+}
+
+static inline void seg_pack_cells8(size_t *dst, const size_t *cell, int m)
+{
+    _mm512_storeu_si512(dst, _mm512_maskz_compress_epi64((__mmask8)m, _mm512_loadu_si512(cell)));
+}
+
+static inline void seg_pack_run8(size_t *dst, size_t first, int m)
+{
+    __m512i c = _mm512_add_epi64(_mm512_set1_epi64((long long)first),
+                                 _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7));
+    _mm512_storeu_si512(dst, _mm512_maskz_compress_epi64((__mmask8)m, c));
+}
+
+static inline seg_v8 seg_sel8(seg_m8 m, seg_v8 a, seg_v8 b)
+{
+    __mmask8 k = _mm512_test_epi64_mask((__m512i)m, (__m512i)m);
+    return (seg_v8)_mm512_mask_blend_pd(k, (__m512d)b, (__m512d)a);
+}
+
+#define SEG_LANES 8
+#include "deposit_gauss_lanes.h"
+#define SEG_FN mimas_gauss_segment_xyz_avx512
+#include "deposit_gauss_segment.h"
+#undef SEG_FN
+#undef SEG_LANES
 #pragma GCC pop_options
 #endif
 
@@ -648,8 +620,10 @@ int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const do
                             mimas_weights *ws)
 {
 #if MIMAS_X86_DISPATCH
+    if (__builtin_cpu_supports("avx512f"))
+        return mimas_gauss_segment_xyz_avx512(dp, a, b, ws);
     if (__builtin_cpu_supports("avx2"))
-        return segment_xyz_avx2(dp, a, b, ws);
+        return mimas_gauss_segment_xyz_avx2(dp, a, b, ws);
 #endif
     return mimas_gauss_segment_xyz_portable(dp, a, b, ws);
 }

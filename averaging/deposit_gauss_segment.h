@@ -1,16 +1,19 @@
 /* The Gaussian line integral of a segment on a Cartesian x-y-z grid (deposit_gauss.c,
- * which includes this twice: SEG_FN the function's name, and with SEG_AVX2 the build for
- * processors with AVX2, which classifies a row's cells and evaluates the cut cells four
- * at a time; the same operations cell by cell, so the same weights to the bit). */
+ * which includes this three times: SEG_FN the function's name, SEG_LANES 1 for the build
+ * for any processor, 4 for the one with AVX2 and 8 for the one with AVX-512, which
+ * classify a row's cells and evaluate the cut cells that many at a time through the lane
+ * helpers of deposit_gauss_lanes.h (row_classify4, put4, cut_push4, cut_flush4,
+ * node_sums4 and the same with 8); the same operations cell by cell, so the same weights
+ * to the bit). */
+/* rows along x padded to a whole number of lanes, and of four cells (node_sums) */
+#define SEG_PAD (SEG_LANES > 4 ? SEG_LANES : 4)
 /* The uncut part: with d = r - a (the cell centre from a), node s of the rule and
  * k = 1/2w^2,
  *   e^{-|d - s b|^2 k} = e^{-|d|^2 k} e^{(2 s d_0.b - s^2 |b|^2) k} prod_x X_x(s)^{i_x},
  * d_0 the offset of the first cell of the box, i_x the cell's index in it and
  * X_x(s) = e^{2 s b_x h_x k}: per node one exponential and one per direction, the
- * powers by products.  The rows along x are summed 4 cells at a time over the nodes. */
-#if SEG_AVX2
-static
-#endif
+ * powers by products.  The rows along x are summed over the nodes 4 cells at a time (SEG_PAD
+ * in the vector builds). */
 int SEG_FN(const mimas_deposit *dp, const double a[3], const double b[3], mimas_weights *ws)
 {
     const mimas_weight *wt = dp->wt;
@@ -30,7 +33,7 @@ int SEG_FN(const mimas_deposit *dp, const double a[3], const double b[3], mimas_
     }
     const double *xs, *wsg;
     int pieces, per = line_rule(len / wt->w, wt->cutoff, &xs, &wsg, &pieces);
-    int nq = per * pieces, nqp = (nq + 3) & ~3, n0p = (n[0] + 3) & ~3;
+    int nq = per * pieces, nqp = (nq + 3) & ~3, n0p = (n[0] + SEG_PAD - 1) & ~(SEG_PAD - 1);
     if (nq > SEG_MAXNODE)
         return -1;
     double tau0 = 0.0; /* d_0.b */
@@ -44,17 +47,18 @@ int SEG_FN(const mimas_deposit *dp, const double a[3], const double b[3], mimas_
     }
     if (big > 600.0)
         return -1;
-    if (mimas_weights_reserve(ws, (size_t)n[0] * n[1] * n[2] + 4)) /* + 4: put4 */
+    if (mimas_weights_reserve(ws, (size_t)n[0] * n[1] * n[2] + 8)) /* + 8: put8 */
         return MIMAS_EIO;
     /* per direction: offsets from a, squared offsets from a and b, the Gaussian factors
      * about a and b; the nodes' powers X^i: x node-major (rows padded to 4), y and z
      * node-minor; the row's sums; the row scalars of a plane (plane_rows_at) */
-    size_t total = (size_t)n0p + n[1] + n[2]; /* x's rows padded to 4 cells */
+    size_t total = (size_t)n0p + n[1] + n[2]; /* x's rows padded (SEG_PAD) */
     int n1p = (n[1] + 3) & ~3;
     size_t nbuf = 5 * total + (size_t)nqp * ((size_t)n0p + n[1] + n[2]) + (size_t)n0p +
                   5 * (size_t)n1p;
-#if SEG_AVX2
-    size_t qcap = (size_t)n0p * n[1] + 8; /* the cut cells queued: a plane's at most */
+#if SEG_LANES > 1
+    /* the cut cells queued: a plane's at most, and room for a lane helper's stores */
+    size_t qcap = (size_t)n0p * n[1] + 2 * SEG_LANES;
     nbuf += 6 * qcap;
 #endif
     double *buf = mimas_weights_scratch(ws, nbuf);
@@ -73,7 +77,7 @@ int SEG_FN(const mimas_deposit *dp, const double a[3], const double b[3], mimas_
     double *restrict vrow = exz + (size_t)nqp * n[2];
     double *pbuf = vrow + n0p;
     plane_rows pr = {pbuf, pbuf + n1p, pbuf + 2 * n1p, pbuf + 3 * n1p, pbuf + 4 * n1p};
-#if SEG_AVX2
+#if SEG_LANES > 1
     double *qbuf = pbuf + 5 * n1p;
     cut_queue cq = {(size_t *)(void *)(qbuf + 5 * qcap), qbuf, qbuf + qcap, qbuf + 2 * qcap,
                     qbuf + 3 * qcap, qbuf + 4 * qcap, 0};
@@ -118,8 +122,8 @@ int SEG_FN(const mimas_deposit *dp, const double a[3], const double b[3], mimas_
     double inv_l2 = 1.0 / l2, inv_len = 1.0 / len, inv_pyz = pyz > 0 ? 1.0 / pyz : 0.0;
     shell_consts sc = {R2, 1.0 / (M_SQRT2 * wt->w), wt->tail,
                        coef * sqrt(M_PI / 2.0) * wt->w / len, coef * wt->shift / len};
-#if SEG_AVX2
-    row_reach4 rr = row_reach4_at(bv[0], l2, inv_l2, R2);
+#if SEG_LANES > 1
+    row_reach rr = {bv[0], l2, inv_l2, R2, 0.0, 0.0, 0.0, 0.0, 0.0};
 #endif
     for (int kz = 0; kz < n[2]; kz++) {
         size_t plane = (size_t)lo[0] + (size_t)g->n[0] * (size_t)g->n[1] * (size_t)(lo[2] + kz);
@@ -131,18 +135,20 @@ int SEG_FN(const mimas_deposit *dp, const double a[3], const double b[3], mimas_
                 continue;
             double qay = pr.qay[j], qby = pr.qby[j], tyz = pr.tyz[j];
             size_t row = plane + (size_t)g->n[0] * (size_t)(lo[1] + j);
-#if SEG_AVX2
+#if SEG_LANES > 1
             /* The cells within R of the segment, and of those the ones with the whole
-             * segment within R (the two balls' intersection), four at a time (row_reach4,
-             * the same tests as a cell at a time): the latter by the nodes, the others
-             * queued for the closed form, four at a time (cut_flush4). */
-            if (cq.n + n[0] > (int)qcap - 4)
-                cut_flush4(&cq, &sc, len, 0, &cur);
-            row_reach4_across(&rr, qay, qby, tyz, R2);
+             * segment within R (the two balls' intersection), SEG_LANES at a time
+             * (row_classify4, the same tests as a cell at a time): the latter by the
+             * nodes, the others queued for the closed form, SEG_LANES at a time
+             * (cut_flush4). */
+            if (cq.n + n[0] > (int)qcap - SEG_LANES)
+                SEG_V(cut_flush)(&cq, &sc, len, 0, &cur);
+            row_reach_across(&rr, qay, qby, tyz);
             double ayz = 0.0, eayz = ea[1][j] * ea[2][kz], ebyz = eb[1][j] * eb[2][kz];
             int have_eyz = 0;
-            for (int c = 0; c < n[0]; c += 4) {
-                int uncut, in = row_classify4(&rr, dx[0] + c, qa[0] + c, qb[0] + c, &uncut);
+            for (int c = 0; c < n[0]; c += SEG_LANES) {
+                int uncut,
+                    in = SEG_V(row_classify)(&rr, dx[0] + c, qa[0] + c, qb[0] + c, &uncut);
                 if (uncut) {
                     if (!have_eyz) {
                         const double *ey = exy + (size_t)j * nqp, *ez = exz + (size_t)kz * nqp;
@@ -151,13 +157,14 @@ int SEG_FN(const mimas_deposit *dp, const double a[3], const double b[3], mimas_
                         ayz = coef * ea[1][j] * ea[2][kz];
                         have_eyz = 1;
                     }
-                    /* the uncut line integral of the four cells over the nodes */
-                    node_sums(ex0, (size_t)n0p, eyz, nq, c, c + 4, vrow);
-                    put4(&cur, row + (size_t)c, uncut, ayz, ea[0] + c, vrow + c, sh);
+                    /* the uncut line integral of the lanes' cells over the nodes */
+                    SEG_V(node_sums)(ex0, (size_t)n0p, eyz, nq, c, vrow);
+                    SEG_V(put)(&cur, row + (size_t)c, uncut, ayz, ea[0] + c, vrow + c, sh);
                 }
                 if (in & ~uncut)
-                    cut_push4(&cq, row + (size_t)c, in & ~uncut, qa[0] + c, qb[0] + c, dx[0] + c,
-                              ea[0] + c, eb[0] + c, qay, qby, bv[0], tyz, inv_len, eayz, ebyz);
+                    SEG_V(cut_push)(&cq, row + (size_t)c, in & ~uncut, qa[0] + c, qb[0] + c,
+                                    dx[0] + c, ea[0] + c, eb[0] + c, qay, qby, bv[0], tyz,
+                                    inv_len, eayz, ebyz);
             }
 #else
             /* The cells within R of the segment form an interval of the row (the
@@ -205,10 +212,10 @@ int SEG_FN(const mimas_deposit *dp, const double a[3], const double b[3], mimas_
 #endif
         }
     }
-#if SEG_AVX2
-    cut_flush4(&cq, &sc, len, 1, &cur);
+#if SEG_LANES > 1
+    SEG_V(cut_flush)(&cq, &sc, len, 1, &cur);
 #endif
     dep_cursor_done(ws, &cur);
     return MIMAS_OK;
 }
-
+#undef SEG_PAD

@@ -93,10 +93,16 @@ int mimas_gauss_sphere_xyz(const mimas_deposit *dp, const double x[3], int with_
                            mimas_weights *ws);
 int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const double b[3],
                             mimas_weights *ws);
-/* The same built for any processor: what mimas_gauss_segment_xyz runs without AVX2 (its
- * AVX2 build gives the same weights to the bit; tests/unit/test_segment_builds.c). */
+/* The same built for any processor, and (x86-64) with AVX2 and with AVX-512, which
+ * mimas_gauss_segment_xyz chooses from the processor's features: the same weights to the
+ * bit (tests/unit/test_segment_builds.c; the last two to be called only where
+ * __builtin_cpu_supports says so). */
 int mimas_gauss_segment_xyz_portable(const mimas_deposit *dp, const double a[3],
                                      const double b[3], mimas_weights *ws);
+int mimas_gauss_segment_xyz_avx2(const mimas_deposit *dp, const double a[3], const double b[3],
+                                 mimas_weights *ws);
+int mimas_gauss_segment_xyz_avx512(const mimas_deposit *dp, const double a[3],
+                                   const double b[3], mimas_weights *ws);
 /* Makes the table the segment's closed form uses (once; thread-safe). */
 void mimas_gauss_tables(void);
 

@@ -1,13 +1,14 @@
-/* The Gaussian line integrals are built for any processor and with AVX2 (on r-z grids also
- * with AVX-512).  On x-y-z grids (averaging/deposit_gauss.c) the AVX2 build classifies a
- * row's cells and evaluates the cells the cut ball cuts four at a time; on r-z grids
+/* The Gaussian line integrals are built for any processor, with AVX2 and with AVX-512.  On
+ * x-y-z grids (averaging/deposit_gauss.c) the AVX2 and AVX-512 builds classify a row's
+ * cells and evaluate the cells the cut ball cuts four or eight at a time; on r-z grids
  * (averaging/deposit_ring.c) the AVX2 build's lanes read the table of M_{1/2} four at a
  * time, and the AVX-512 build evaluates eight branch points at a time.  Every build the
- * processor runs must give the portable build's weights to the bit, cell for cell: random segments of every kind (short and long ones,
- * along an axis, across the grid's edges and its shorter last cell, near the axis), for the
- * plain and the shifted Gaussian, cutoffs 3 to 5 and widths from half to twice the cell
- * size.  The portable builds are the ones the deposits' own tests check against
- * independent integrals (test_mercurycg, test_average, test_weight). */
+ * processor runs must give the portable build's weights to the bit, cell for cell: random
+ * segments of every kind (short and long ones, along an axis, across the grid's edges and
+ * its shorter last cell, near the axis, rows of fewer than four and more than eight
+ * cells), for the plain and the shifted Gaussian, cutoffs 3 to 5 and widths from half to
+ * three times the cell size.  The portable builds are the ones the deposits' own tests
+ * check against independent integrals (test_mercurycg, test_average, test_weight). */
 #include <config.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -67,11 +68,13 @@ static void assert_same(const mimas_weights *w1, const mimas_weights *w2, const 
 
 typedef int (*rz_build)(const mimas_deposit *, const double *, const double *, const double *,
                         double, double, mimas_weights *);
+typedef int (*xyz_build)(const mimas_deposit *, const double *, const double *,
+                         mimas_weights *);
 
-/* n random segments on the grid with the weight: the dispatched build (x-y-z grids) or the
- * given one (r-z grids) against the portable one; returns how many weights were compared. */
+/* n random segments on the grid with the weight: the given build (x-y-z grids: xyz, r-z
+ * grids: rz) against the portable one; returns how many weights were compared. */
 static size_t compare_builds(const char *grid, const char *weight, int periodic, int n,
-                             unsigned long seed, rz_build rz)
+                             unsigned long seed, xyz_build xyz, rz_build rz)
 {
     mimas_grid g;
     mimas_weight wt;
@@ -111,7 +114,7 @@ static size_t compare_builds(const char *grid, const char *weight, int periodic,
         w1.n = w2.n = 0;
         int r1, r2;
         if (dp.gauss_xyz) {
-            r1 = mimas_gauss_segment_xyz(&dp, a, b, &w1);
+            r1 = xyz(&dp, a, b, &w1);
             r2 = mimas_gauss_segment_xyz_portable(&dp, a, b, &w2);
         } else {
             double m[3] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
@@ -145,15 +148,29 @@ static void test_builds_agree(void **state)
     const char *weights[] = {"gauss:w=0.001",          "gauss:w=0.001,shift",
                              "gauss:w=0.0007,cutoff=4", "gauss:w=0.0005,cutoff=5",
                              "gauss:w=0.002",          "gauss:w=0.0012,cutoff=3.5,shift"};
-    size_t total = 0;
-    for (size_t k = 0; k < sizeof weights / sizeof weights[0]; k++) {
-        total += compare_builds(grid, weights[k], 0, 400, 11 + k, NULL);
-        total += compare_builds(grid, weights[k], 1, 200, 101 + k, NULL);
+    /* x-y-z grids: each build the processor runs, and the one the deposit chooses */
+    xyz_build xyz[3] = {mimas_gauss_segment_xyz, NULL, NULL};
+#if MIMAS_X86_DISPATCH
+    xyz[1] = mimas_gauss_segment_xyz_avx2;
+    if (__builtin_cpu_supports("avx512f"))
+        xyz[2] = mimas_gauss_segment_xyz_avx512;
+    else
+        printf("# no AVX-512 on this processor: its builds not compared\n");
+#endif
+    for (int m = 0; m < 3 && xyz[m]; m++) {
+        size_t total = 0;
+        for (size_t k = 0; k < sizeof weights / sizeof weights[0]; k++) {
+            total += compare_builds(grid, weights[k], 0, 400, 11 + k, xyz[m], NULL);
+            total += compare_builds(grid, weights[k], 1, 200, 101 + k, xyz[m], NULL);
+        }
+        /* a coarse grid: rows of fewer than four cells; a fine one: rows of more than
+         * eight, and w = 3 h, cutoff 4: 25 cells */
+        total += compare_builds("x=0:0.01:3,y=0:0.012:2,z=0:0.009:3", "gauss:w=0.002", 0, 300,
+                                7, xyz[m], NULL);
+        total += compare_builds("x=0:0.01:20,y=0:0.012:24,z=0:0.009:18",
+                                "gauss:w=0.0015,cutoff=4", 1, 100, 8, xyz[m], NULL);
+        assert_true(total > 200000); /* enough cells, cut and uncut, to mean something */
     }
-    /* a coarse grid: rows of fewer than four cells */
-    total += compare_builds("x=0:0.01:3,y=0:0.012:2,z=0:0.009:3", "gauss:w=0.002", 0, 300, 7,
-                            NULL);
-    assert_true(total > 100000); /* enough cells, cut and uncut, to mean something */
     /* r-z grids, the axis at the box's corner: branches from on the axis to r = 11 mm (rules
      * of 4, 8 and 16 points: the AVX-512 build takes those of 4 to its AVX2 build), each
      * build the processor runs, and the one the deposit chooses */
@@ -163,13 +180,12 @@ static void test_builds_agree(void **state)
     if (__builtin_cpu_supports("avx512f"))
         builds[2] = mimas_gauss_segment_rz_avx512;
     else
-        printf("# no AVX-512 on this processor: its r-z build not compared\n");
 #endif
     for (int m = 0; m < 3 && builds[m]; m++) {
         size_t rz = 0;
         for (size_t k = 0; k < sizeof weights / sizeof weights[0]; k++)
             rz += compare_builds("r=0:0.011:11,z=0:0.009:9", weights[k], 0, 150, 201 + k,
-                                 builds[m]);
+                                 NULL, builds[m]);
         assert_true(rz > 20000);
     }
 }
