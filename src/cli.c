@@ -19,6 +19,9 @@
 #include <unistd.h>
 
 #include <hdf5.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "tmpfiles.h"
 
@@ -745,13 +748,31 @@ int cli_refuse_input_as_output(const cli_command *cmd, const char *output, const
     return 0;
 }
 
+#ifdef _OPENMP
+/* Whether the command line asks for one thread: --threads 1 or --threads=1. */
+static int one_thread(int argc, char **argv)
+{
+    for (int k = 1; k < argc; k++) {
+        if (!strcmp(argv[k], "--threads=1") ||
+            (!strcmp(argv[k], "--threads") && k + 1 < argc && !strcmp(argv[k + 1], "1")))
+            return 1;
+    }
+    return 0;
+}
+#endif
+
 void cli_start(int argc, char **argv)
 {
-    (void)argc;
 #ifdef _OPENMP
-    if (!getenv("OMP_WAIT_POLICY") && setenv("OMP_WAIT_POLICY", "passive", 1) == 0)
+    /* One thread: no thread of OpenMP's ever waits (every parallel region of the program
+     * then has one thread), so the program need not start again, which costs as much as
+     * its first start (loading its shared libraries, some 9 ms) */
+    if (one_thread(argc, argv))
+        omp_set_num_threads(1);
+    else if (!getenv("OMP_WAIT_POLICY") && setenv("OMP_WAIT_POLICY", "passive", 1) == 0)
         execv("/proc/self/exe", argv); /* returns only if it failed: go on as we are */
 #else
+    (void)argc;
     (void)argv;
 #endif
     H5dont_atexit();

@@ -173,7 +173,9 @@ int cli_parse_threads(const cli_command *cmd, const char *arg, int *threads);
 /* What main() does first:
  * - OpenMP threads wait passively (OMP_WAIT_POLICY=passive) unless the user
  *   set OMP_WAIT_POLICY: libgomp reads it when it is loaded, before main(),
- *   so the program executes itself once more with it set;
+ *   so the program executes itself once more with it set; with --threads 1
+ *   on the command line every parallel region has one thread, no thread
+ *   waits, and the program goes on as it is;
  * - HDF5 does not close files at exit (a file whose flush failed on a full
  *   disk would make it loop; mimas closes its files itself);
  * - SIGINT, SIGTERM, SIGHUP and SIGPIPE remove the temporary output files
