@@ -328,8 +328,8 @@ static void add_contact(double *restrict S0, size_t stride, const mimas_weights 
 /* One contact's stress and fabric: f acting on the particle at the end of
  * branch b, the segment from `from` to from + b. */
 static int deposit_branch(const mimas_deposit *dp, const mimas_grid *g, double *S0,
-                          size_t stride, mimas_weights *ws, const double from[3], const double b[3],
-                          const double f[3], const double at[3])
+                          size_t stride, mimas_weights *ws, const double from[3],
+                          const double b[3], const double f[3], const double at[3])
 {
     basis B;
     basis_at(g, at, &B);
@@ -404,8 +404,8 @@ static int prepare(mimas_average *a, const mimas_frame *f, mimas_error *err)
  * at r, the segment from the contact point c to r (docs/theory.md §1, §6), and the
  * force as a wall force density at c. */
 static int deposit_wall_contact(const mimas_deposit *dp, const mimas_grid *g, double *S,
-                                size_t stride, mimas_weights *ws, const mimas_box *box, const double r[3],
-                                const double c[3], const double f[3])
+                                size_t stride, mimas_weights *ws, const mimas_box *box,
+                                const double r[3], const double c[3], const double f[3])
 {
     double b[3];
     mimas_branch(box, r, c, b);

@@ -14,11 +14,7 @@
 
 #include "deposit_impl.h"
 #include "gauss_legendre.h"
-#include "simd.h"
-
-#if MIMAS_X86_DISPATCH
-#include <immintrin.h>
-#endif
+#include "lanes_x86.h"
 
 /* ---- G(u) = e^{u^2} erf(u) and H(u) = e^{u^2} erfc(u) ---------------------------------
  * G' = 2u G + 2/sqrt(pi) and H' = 2u H - 2/sqrt(pi): the Taylor coefficients of either about
@@ -476,18 +472,18 @@ static inline void row_reach_across(row_reach *rr, double qay, double qby, doubl
 }
 
 /* the helper f of the build of SEG_LANES lanes (f4, f8), and the names
- * deposit_gauss_lanes.h takes (each build defines seg_v4, seg_bits4, ... or the same
- * with 8) */
+ * deposit_gauss_lanes.h takes (lanes_x86.h's lane_v4, lane_bits4, ..., and the packs
+ * below, or the same with 8) */
 #define SEG_CAT_(f, n) f##n
 #define SEG_CAT(f, n) SEG_CAT_(f, n)
 #define SEG_V(f) SEG_CAT(f, SEG_LANES)
-#define SEG_VT SEG_V(seg_v)
-#define SEG_MT SEG_V(seg_m)
-#define SEG_IT SEG_V(seg_i)
-#define SEG_BITS SEG_V(seg_bits)
-#define SEG_SEL SEG_V(seg_sel)
-#define SEG_GATHER SEG_V(seg_gather)
-#define SEG_SQRT SEG_V(seg_sqrt)
+#define SEG_VT SEG_V(lane_v)
+#define SEG_MT SEG_V(lane_m)
+#define SEG_IT SEG_V(lane_i)
+#define SEG_BITS SEG_V(lane_bits)
+#define SEG_SEL SEG_V(lane_sel)
+#define SEG_GATHER SEG_V(lane_gather)
+#define SEG_SQRT SEG_V(lane_sqrt)
 #define SEG_PACK SEG_V(seg_pack)
 #define SEG_PACK_CELLS SEG_V(seg_pack_cells)
 #define SEG_PACK_RUN SEG_V(seg_pack_run)
@@ -498,25 +494,6 @@ static inline void row_reach_across(row_reach *rr, double qay, double qby, doubl
  * line integral that calls them. */
 #pragma GCC push_options
 #pragma GCC target("avx2")
-typedef double seg_v4 __attribute__((vector_size(32)));
-typedef long long seg_m4 __attribute__((vector_size(32)));
-typedef int seg_i4 __attribute__((vector_size(16)));
-
-static inline int seg_bits4(seg_m4 m)
-{
-    return _mm256_movemask_pd((__m256d)m);
-}
-
-static inline void seg_gather4(const double *base, const seg_i4 *row, seg_v4 *c)
-{
-    *c = (seg_v4)_mm256_i32gather_pd(base, (__m128i)*row, 8);
-}
-
-static inline void seg_sqrt4(seg_v4 x, seg_v4 *r)
-{
-    *r = (seg_v4)_mm256_sqrt_pd((__m256d)x);
-}
-
 /* The lanes of the bits of m moved to the front: a permutation of 32-bit halves per mask */
 static const int32_t pack4_perm[16][8] = {
     {0, 1, 2, 3, 4, 5, 6, 7}, {0, 1, 2, 3, 4, 5, 6, 7}, {2, 3, 0, 1, 4, 5, 6, 7},
@@ -526,7 +503,7 @@ static const int32_t pack4_perm[16][8] = {
     {4, 5, 6, 7, 0, 1, 2, 3}, {0, 1, 4, 5, 6, 7, 2, 3}, {2, 3, 4, 5, 6, 7, 0, 1},
     {0, 1, 2, 3, 4, 5, 6, 7}};
 
-static inline void seg_pack4(double *dst, seg_v4 v, int m)
+static inline void seg_pack4(double *dst, lane_v4 v, int m)
 {
     __m256i p = _mm256_loadu_si256((const __m256i *)pack4_perm[m]);
     __m256 x = _mm256_castpd_ps((__m256d)v);
@@ -550,11 +527,6 @@ static inline void seg_pack_run4(size_t *dst, size_t first, int m)
                                       _mm256_setr_epi64x(0, 1, 2, 3)), m);
 }
 
-static inline seg_v4 seg_sel4(seg_m4 m, seg_v4 a, seg_v4 b)
-{
-    return (seg_v4)_mm256_blendv_pd((__m256d)b, (__m256d)a, (__m256d)m);
-}
-
 #define SEG_LANES 4
 #include "deposit_gauss_lanes.h"
 #define SEG_FN mimas_gauss_segment_xyz_avx2
@@ -565,26 +537,7 @@ static inline seg_v4 seg_sel4(seg_m4 m, seg_v4 a, seg_v4 b)
 
 #pragma GCC push_options
 #pragma GCC target("avx2,avx512f")
-typedef double seg_v8 __attribute__((vector_size(64)));
-typedef long long seg_m8 __attribute__((vector_size(64)));
-typedef int seg_i8 __attribute__((vector_size(32)));
-
-static inline int seg_bits8(seg_m8 m)
-{
-    return (int)_mm512_test_epi64_mask((__m512i)m, (__m512i)m);
-}
-
-static inline void seg_gather8(const double *base, const seg_i8 *row, seg_v8 *c)
-{
-    *c = (seg_v8)_mm512_i32gather_pd((__m256i)*row, base, 8);
-}
-
-static inline void seg_sqrt8(seg_v8 x, seg_v8 *r)
-{
-    *r = (seg_v8)_mm512_sqrt_pd((__m512d)x);
-}
-
-static inline void seg_pack8(double *dst, seg_v8 v, int m)
+static inline void seg_pack8(double *dst, lane_v8 v, int m)
 {
     _mm512_storeu_pd(dst, _mm512_maskz_compress_pd((__mmask8)m, (__m512d)v));
 }
@@ -599,12 +552,6 @@ static inline void seg_pack_run8(size_t *dst, size_t first, int m)
     __m512i c = _mm512_add_epi64(_mm512_set1_epi64((long long)first),
                                  _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7));
     _mm512_storeu_si512(dst, _mm512_maskz_compress_epi64((__mmask8)m, c));
-}
-
-static inline seg_v8 seg_sel8(seg_m8 m, seg_v8 a, seg_v8 b)
-{
-    __mmask8 k = _mm512_test_epi64_mask((__m512i)m, (__m512i)m);
-    return (seg_v8)_mm512_mask_blend_pd(k, (__m512d)b, (__m512d)a);
 }
 
 #define SEG_LANES 8

@@ -2,9 +2,9 @@
  * vector builds): a row's cells classified, the uncut ones summed over the nodes and put,
  * the cut ones queued and evaluated, SEG_LANES cells at a time in GCC's vectors.
  * deposit_gauss.c includes this once for each build, under its #pragma GCC target, with
- * SEG_LANES, the vector, mask and index types SEG_VT, SEG_MT and SEG_IT (seg_v4, ...),
- * and SEG_BITS (a mask as bits), SEG_GATHER (the table's coefficient at each lane's
- * row), SEG_SQRT, SEG_SEL (m ? a : b lane by lane), SEG_PACK, SEG_PACK_CELLS and
+ * SEG_LANES, the vector, mask and index types SEG_VT, SEG_MT and SEG_IT, SEG_BITS (a mask
+ * as bits), SEG_GATHER (the table's coefficient at each lane's row), SEG_SQRT and SEG_SEL
+ * (m ? a : b lane by lane) of lanes_x86.h, and SEG_PACK, SEG_PACK_CELLS and
  * SEG_PACK_RUN (the lanes of some bits of a vector, of cell indices read or of the
  * consecutive cells from one, moved to the front and all SEG_LANES stored: the weight
  * list and the queue have room for SEG_LANES more).  Lane by lane the same operations as
@@ -73,7 +73,7 @@ static void SEG_V(cut_flush)(cut_queue *q, const shell_consts *sc, double len, i
         cut_push(q, 0, sc->R2, sc->R2, 0.0, 0.0, 0.0);
     const SEG_VT zero = {0};
     for (int i = 0; i < done; i += SEG_LANES) {
-        SEG_VT e, qb, t, ea, eb, c;
+        SEG_VT e, qb, t, ea, eb, c, c2;
         memcpy(&e, q->e + i, sizeof e);
         memcpy(&qb, q->qb + i, sizeof qb);
         memcpy(&t, q->t + i, sizeof t);
@@ -83,7 +83,8 @@ static void SEG_V(cut_flush)(cut_queue *q, const shell_consts *sc, double len, i
         h2 = SEG_SEL(h2 < zero, zero, h2);
         SEG_MT valid = h2 < sc->R2, a_in = e < sc->R2, end = a_in | (qb < sc->R2);
         SEG_MT keep = valid & (end | ((t > zero) & (t < len)));
-        SEG_SQRT(SEG_SEL(valid, sc->R2 - h2, zero), &c);
+        c2 = SEG_SEL(valid, sc->R2 - h2, zero);
+        SEG_SQRT(&c2, &c);
         /* the foot from the end inside the ball (a's when both are), its factor */
         SEG_VT tp = SEG_SEL(a_in, t, len - t), e_end = SEG_SEL(a_in, ea, eb);
         SEG_MT neg = tp < zero;
@@ -95,7 +96,8 @@ static void SEG_V(cut_flush)(cut_queue *q, const shell_consts *sc, double len, i
         SEG_VT chord = SEG_SEL(end, tp + c, 2.0 * c);
         SEG_VT w = SEG_SEL(keep, sc->scale * v - sc->shift_scale * chord, zero);
         /* the lanes with a weight (w != 0, as in C: NaN too), of the queue's n */
-        int put = SEG_BITS(w != zero);
+        SEG_MT nonzero = w != zero;
+        int put = SEG_BITS(&nonzero);
         if (n - i < SEG_LANES)
             put &= (1 << (n - i)) - 1;
         SEG_PACK(cur->w, w, put);
@@ -165,8 +167,8 @@ static inline int SEG_V(row_classify)(const row_reach *rr, const double *dx, con
     SEG_VT d2 = qai - t * t * rr->inv_l2;
     d2 = SEG_SEL(t >= rr->l2, B + rr->qby, d2);
     d2 = SEG_SEL(t <= zero, qai, d2);
-    SEG_MT within = d2 < rr->R2, whole = (A < rr->ra) & (B < rr->rb);
-    *uncut = SEG_BITS(within & whole);
-    return SEG_BITS(within);
+    SEG_MT within = d2 < rr->R2, whole = within & (A < rr->ra) & (B < rr->rb);
+    *uncut = SEG_BITS(&whole);
+    return SEG_BITS(&within);
 }
 

@@ -14,12 +14,8 @@
 
 #include "deposit_impl.h"
 #include "gauss_legendre.h"
+#include "lanes_x86.h"
 #include "ring_tables.h"
-#include "simd.h"
-
-#if MIMAS_X86_DISPATCH
-#include <immintrin.h>
-#endif
 
 /* The average at the ring (r, z-offset dz) given (r - rho)^2. */
 static double ring_value(const mimas_weight *wt, double r, double rho, double dz, double dr2,
@@ -56,22 +52,20 @@ static int cell_box(const mimas_deposit *dp, const double a[3], double reach, in
  * and T_0 = tail M_{1/2}(X) from its table; other points or cells inside the support are
  * flagged for ring_value.  The shifted kernel's tm = 2 asin(u_m) is the same series with
  * T_n = 2/(2n + 1).  Each build includes deposit_ring_lanes.h with RING_W, its vector,
- * mask and index types RING_VT, RING_MT and RING_IT, and RING_ANY (a lane of a mask set),
- * RING_BITS (the mask as bits), RING_GATHER (the table's coefficient k at each lane's row)
- * and RING_SQRT: lane by lane the same operations in every build, so the same weights to
- * the bit in every build; they are mimas_gauss_ring_short's to rounding (y and 1/a from
+ * mask and index types RING_VT, RING_MT and RING_IT, and RING_BITS (the mask as bits),
+ * RING_GATHER (the table's coefficient k at each lane's row) and RING_SQRT (lanes_x86.h in
+ * the vector builds): lane by lane the same operations in every build, so the same weights
+ * to the bit in every build; they are mimas_gauss_ring_short's to rounding (y and 1/a from
  * 1/(4 r rho), multiplied, and a fixed number of terms).  (The helpers take their vectors
  * by address: without AVX a vector of 4 doubles is not passed in registers.) */
 #define RING_LANE_N 10
 #define RING_LANE_Y 0.02
 
-typedef double ring_v4 __attribute__((vector_size(32)));
-typedef long long ring_m4 __attribute__((vector_size(32)));
-typedef int ring_i4 __attribute__((vector_size(16)));
-/* m ? a : b lane by lane (m from a comparison: all ones or zero) */
+/* m ? a : b lane by lane (m from a comparison: all ones or zero); whether a lane is set */
 #define RING_SEL(m, a, b) ((RING_VT)(((RING_MT)(a) & (m)) | ((RING_MT)(b) & ~(m))))
+#define RING_ANY(m) (RING_BITS(m) != 0)
 
-static inline int ring_bits_p(const ring_m4 *m)
+static inline int ring_bits_p(const lane_m4 *m)
 {
     int bits = 0;
     for (int l = 0; l < 4; l++)
@@ -79,28 +73,22 @@ static inline int ring_bits_p(const ring_m4 *m)
     return bits;
 }
 
-static inline int ring_any_p(const ring_m4 *m)
-{
-    return ring_bits_p(m) != 0;
-}
-
-static inline void ring_gather_p(const double *base, const ring_i4 *row, ring_v4 *c)
+static inline void ring_gather_p(const double *base, const lane_i4 *row, lane_v4 *c)
 {
     for (int l = 0; l < 4; l++)
         (*c)[l] = base[(*row)[l]];
 }
 
-static inline void ring_sqrt_p(const ring_v4 *Y, ring_v4 *r)
+static inline void ring_sqrt_p(const lane_v4 *Y, lane_v4 *r)
 {
     for (int l = 0; l < 4; l++)
         (*r)[l] = sqrt((*Y)[l]);
 }
 
 #define RING_W 4
-#define RING_VT ring_v4
-#define RING_MT ring_m4
-#define RING_IT ring_i4
-#define RING_ANY ring_any_p
+#define RING_VT lane_v4
+#define RING_MT lane_m4
+#define RING_IT lane_i4
 #define RING_BITS ring_bits_p
 #define RING_GATHER ring_gather_p
 #define RING_SQRT ring_sqrt_p
@@ -116,34 +104,13 @@ static inline void ring_sqrt_p(const ring_v4 *Y, ring_v4 *r)
 #pragma GCC push_options
 #pragma GCC target("avx2")
 
-static inline int ring_bits_avx2(const ring_m4 *m)
-{
-    return _mm256_movemask_pd((__m256d)*m);
-}
-
-static inline int ring_any_avx2(const ring_m4 *m)
-{
-    return ring_bits_avx2(m) != 0;
-}
-
-static inline void ring_gather_avx2(const double *base, const ring_i4 *row, ring_v4 *c)
-{
-    *c = (ring_v4)_mm256_i32gather_pd(base, (__m128i)*row, 8);
-}
-
-static inline void ring_sqrt_avx2(const ring_v4 *Y, ring_v4 *r)
-{
-    *r = (ring_v4)_mm256_sqrt_pd((__m256d)*Y);
-}
-
 #define RING_W 4
-#define RING_VT ring_v4
-#define RING_MT ring_m4
-#define RING_IT ring_i4
-#define RING_ANY ring_any_avx2
-#define RING_BITS ring_bits_avx2
-#define RING_GATHER ring_gather_avx2
-#define RING_SQRT ring_sqrt_avx2
+#define RING_VT lane_v4
+#define RING_MT lane_m4
+#define RING_IT lane_i4
+#define RING_BITS lane_bits4
+#define RING_GATHER lane_gather4
+#define RING_SQRT lane_sqrt4
 #define RING_TABLE_FN ring_table_avx2
 #define RING_REACH_FN ring_reach_avx2
 #define RING_LANES_FN ring_lanes_avx2
@@ -156,40 +123,15 @@ static inline void ring_sqrt_avx2(const ring_v4 *Y, ring_v4 *r)
 #pragma GCC push_options
 #pragma GCC target("avx2,avx512f")
 
-typedef double ring_v8 __attribute__((vector_size(64)));
-typedef long long ring_m8 __attribute__((vector_size(64)));
-typedef int ring_i8 __attribute__((vector_size(32)));
-
-static inline int ring_bits_avx512(const ring_m8 *m)
-{
-    return (int)_mm512_test_epi64_mask((__m512i)*m, (__m512i)*m);
-}
-
-static inline int ring_any_avx512(const ring_m8 *m)
-{
-    return ring_bits_avx512(m) != 0;
-}
-
-static inline void ring_gather_avx512(const double *base, const ring_i8 *row, ring_v8 *c)
-{
-    *c = (ring_v8)_mm512_i32gather_pd((__m256i)*row, base, 8);
-}
-
-static inline void ring_sqrt_avx512(const ring_v8 *Y, ring_v8 *r)
-{
-    *r = (ring_v8)_mm512_sqrt_pd((__m512d)*Y);
-}
-
 /* the rules of 4 points (the shortest branches) in the AVX2 build */
 #define RING_NARROW mimas_gauss_segment_rz_avx2
 #define RING_W 8
-#define RING_VT ring_v8
-#define RING_MT ring_m8
-#define RING_IT ring_i8
-#define RING_ANY ring_any_avx512
-#define RING_BITS ring_bits_avx512
-#define RING_GATHER ring_gather_avx512
-#define RING_SQRT ring_sqrt_avx512
+#define RING_VT lane_v8
+#define RING_MT lane_m8
+#define RING_IT lane_i8
+#define RING_BITS lane_bits8
+#define RING_GATHER lane_gather8
+#define RING_SQRT lane_sqrt8
 #define RING_TABLE_FN ring_table_avx512
 #define RING_REACH_FN ring_reach_avx512
 #define RING_LANES_FN ring_lanes_avx512

@@ -297,7 +297,6 @@ int RING_SPHERE_FN(const mimas_deposit *dp, const double a[3], int with_grad, do
 #undef RING_VT
 #undef RING_MT
 #undef RING_IT
-#undef RING_ANY
 #undef RING_BITS
 #undef RING_GATHER
 #undef RING_SQRT
