@@ -626,7 +626,8 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
     if (a->frames == 0)
         a->grid = g;
     mimas_deposit dp;
-    mimas_deposit_init(&dp, &g, &a->opt.weight, &f->box, a->opt.grid_none);
+    if (mimas_deposit_init(&dp, &g, &a->opt.weight, &f->box, a->opt.grid_none, err))
+        return MIMAS_EUSAGE;
     if (deposit_frame_sums(a, f, &g, &dp))
         return mimas_error_set(err, MIMAS_EIO, "out of memory");
     a->frames++;

@@ -101,8 +101,79 @@ static double image_margin(const mimas_deposit *dp)
     return m;
 }
 
-void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,
-                        const mimas_box *box, int grid_none)
+/* The Cartesian bounding box of a grid (a cylindrical one: of its outer cylinder) */
+static void grid_bounds(const mimas_grid *g, double lo[3], double hi[3])
+{
+    for (int d = 0; d < 3; d++) {
+        if (g->kind == MIMAS_GRID_CARTESIAN) {
+            lo[d] = g->lo[d];
+            hi[d] = g->hi[d];
+            continue;
+        }
+        double p0 = g->origin[d] + g->lo[2] * g->ez[d], p1 = g->origin[d] + g->hi[2] * g->ez[d];
+        double spread = g->hi[0] * sqrt(fmax(0.0, 1.0 - g->ez[d] * g->ez[d]));
+        lo[d] = fmin(p0, p1) - spread;
+        hi[d] = fmax(p0, p1) + spread;
+    }
+}
+
+/* The periodic images an object may need along each edge d of the box, range[d] box
+ * widths either way.  In fractional coordinates s_d along the edges (0 <= s_d < 1 inside
+ * the box) a particle's centre lies inside the box and a contact's branch reaches out of it
+ * by at most h_d (by the minimum image from a centre: 1/2, and the tilt's share in a
+ * triclinic box), the grid reaches e_d = ext_d / W_d beyond it (from the corners of its
+ * bounding box), W_d the width between the faces across edge d, and a kernel R / W_d
+ * further: the images k with |k| <= 1 + floor(h_d + (R + ext_d) / W_d). */
+static int image_range(mimas_deposit *dp, const mimas_box *box, const double e[3][3],
+                       int marginal, int range[3], mimas_error *err)
+{
+    double glo[3], ghi[3], R = dp->kernel ? mimas_weight_reach(dp->wt) : 0.0;
+    grid_bounds(dp->grid, glo, ghi);
+    double smin[3] = {0, 0, 0}, smax[3] = {1, 1, 1};
+    for (int c = 0; c < 8; c++) {
+        double x[3] = {c & 1 ? ghi[0] : glo[0], c & 2 ? ghi[1] : glo[1], c & 4 ? ghi[2] : glo[2]};
+        double s[3];
+        mimas_box_fractional(box, e, x, s);
+        for (int d = 0; d < 3; d++) {
+            smin[d] = fmin(smin[d], s[d]);
+            smax[d] = fmax(smax[d], s[d]);
+        }
+    }
+    double vol = e[0][0] * e[1][1] * e[2][2], h[3];
+    /* mimas_box_min_image: |s_2| <= 1/2, then |d_y| <= L_y / 2 with s_2 yz, then x */
+    h[2] = 0.5;
+    h[1] = 0.5 + 0.5 * fabs(box->yz) / e[1][1];
+    h[0] = 0.5 + (0.5 * fabs(box->xz) + h[1] * fabs(box->xy)) / e[0][0];
+    for (int d = 0; d < 3; d++) {
+        range[d] = box->periodic[d];
+        if (!box->periodic[d])
+            continue;
+        /* a kernel integrated along the edge takes in all of its images there: the
+         * shifts along it have the same projection as the zero one (same_projection) */
+        memcpy(dp->shift[0], e[d], sizeof dp->shift[0]);
+        memset(dp->shift[1], 0, sizeof dp->shift[1]);
+        if (marginal && same_projection(dp, dp->grid, 0, 1))
+            continue;
+        /* the width across edge d: the volume over the area of the face of the other two */
+        const double *u = e[(d + 1) % 3], *v = e[(d + 2) % 3];
+        double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                       u[0] * v[1] - u[1] * v[0]};
+        double W = fabs(vol) / sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        double over = fmax(-smin[d], smax[d] - 1.0), ext = over > 0 ? W * over : 0.0;
+        double k = 1.0 + floor(h[d] + (R + ext) / W);
+        if (!(k <= MIMAS_IMAGE_RANGE))
+            return mimas_error_set(err, MIMAS_EUSAGE,
+                                   "the kernel's reach (%g) and the grid's overhang beyond the "
+                                   "periodic box (%g) span %g of its widths along %c (%g) or "
+                                   "more: use a narrower kernel or a grid within the box",
+                                   R, ext, MIMAS_IMAGE_RANGE - h[d], "xyz"[d], W);
+        range[d] = (int)k;
+    }
+    return MIMAS_OK;
+}
+
+int mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,
+                       const mimas_box *box, int grid_none, mimas_error *err)
 {
     memset(dp, 0, sizeof *dp);
     dp->grid = g;
@@ -139,14 +210,14 @@ void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weig
     /* images along the periodic edge vectors: shifts k_a a + k_b b + k_c c */
     double e[3][3];
     mimas_box_edges(box, e);
-    int range[3];
-    for (int d = 0; d < 3; d++)
-        range[d] = box->periodic[d] ? 1 : 0;
-    dp->nshift = 0;
     /* a kernel integrated over a direction takes in all of its images there:
      * only images that differ in the resolved directions are added */
     int marginal = dp->kernel && (g->kind == MIMAS_GRID_CARTESIAN ? dp->dims < 3
                                                                   : !g->gridded[2]);
+    int range[3] = {0, 0, 0};
+    if (!grid_none && image_range(dp, box, e, marginal, range, err))
+        return MIMAS_EUSAGE;
+    dp->nshift = 0;
     for (int pass = 0; pass < 2; pass++) /* the zero shift first */
         for (int i = -range[0]; i <= range[0]; i++)
             for (int j = -range[1]; j <= range[1]; j++)
@@ -163,6 +234,7 @@ void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weig
                         dp->nshift++;
                 }
     dp->image_margin = image_margin(dp);
+    return MIMAS_OK;
 }
 
 /* Bounds of cell k along d (no divisions). */

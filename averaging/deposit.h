@@ -31,13 +31,19 @@ typedef struct mimas_weights {
 
 void mimas_weights_free(mimas_weights *ws);
 
+/* The periodic images an object may need along each edge of the box: those up to
+ * MIMAS_IMAGE_RANGE box widths away (a kernel reaching further is refused) */
+#define MIMAS_IMAGE_RANGE 3
+#define MIMAS_DEPOSIT_SHIFTS                                                                     \
+    ((2 * MIMAS_IMAGE_RANGE + 1) * (2 * MIMAS_IMAGE_RANGE + 1) * (2 * MIMAS_IMAGE_RANGE + 1))
+
 typedef struct mimas_deposit {
     const mimas_grid *grid;
     const mimas_weight *wt;
     int none;              /* --grid none: one cell, the box, weight 1/V_box */
     double box_volume;
     int nshift;            /* periodic image shifts (the first is zero) */
-    double shift[27][3];
+    double shift[MIMAS_DEPOSIT_SHIFTS][3];
     double image_margin;   /* Cartesian grids: an object whose bounding box lies inside
                             * the grid by more than this on every side has no image
                             * that reaches it (INFINITY: always search the images) */
@@ -55,8 +61,11 @@ typedef struct mimas_deposit {
     double gq[3];          /* e^{-2 h^2 / 2w^2} per direction, for its 1-D factors */
 } mimas_deposit;
 
-void mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,
-                        const mimas_box *box, int grid_none);
+/* MIMAS_EUSAGE (in err) when the kernel reaches more than MIMAS_IMAGE_RANGE widths of a
+ * periodic box beyond its own (a field that would average over so many images of each
+ * particle). */
+int mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,
+                       const mimas_box *box, int grid_none, mimas_error *err);
 /* A sphere of radius R at x (R = 0: a point); with_grad: kernels also give
  * their gradient.  Appends to ws (ws->n = 0 first for a new object).
  * Returns MIMAS_OK or MIMAS_EIO when out of memory. */

@@ -41,7 +41,10 @@ static void run(const char *name, const char *grid, const char *weight, int segm
     mimas_box box = {{0, 0, 0}, {L, L, L}, 0, 0, 0, {1, 1, 1}};
     mimas_grid_fit_box(&g, &box);
     mimas_deposit dp;
-    mimas_deposit_init(&dp, &g, &w, &box, 0);
+    if (mimas_deposit_init(&dp, &g, &w, &box, 0, &err)) {
+        fprintf(stderr, "bench_deposit: %s\n", err.msg);
+        exit(2);
+    }
     int with_grad = w.kind == MIMAS_WEIGHT_GAUSS || w.kind == MIMAS_WEIGHT_LUCY;
     double(*a)[3] = malloc(sizeof *a * N_OBJECTS), (*b)[3] = malloc(sizeof *b * N_OBJECTS);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937); /* the same objects on every machine */

@@ -400,6 +400,16 @@ void mimas_box_edges(const mimas_box *b, double e[3][3])
     memcpy(e, m, sizeof m);
 }
 
+void mimas_box_fractional(const mimas_box *b, const double e[3][3], const double x[3],
+                          double s[3])
+{
+    /* the edge vectors form a lower triangular matrix: solved from z down */
+    double r[3] = {x[0] - b->lo[0], x[1] - b->lo[1], x[2] - b->lo[2]};
+    s[2] = r[2] / e[2][2];
+    s[1] = (r[1] - s[2] * e[2][1]) / e[1][1];
+    s[0] = (r[0] - s[2] * e[2][0] - s[1] * e[1][0]) / e[0][0];
+}
+
 void mimas_box_min_image_shift(const mimas_box *b, double d[3], double k[3])
 {
     double L[3] = {b->hi[0] - b->lo[0], b->hi[1] - b->lo[1], b->hi[2] - b->lo[2]};

@@ -137,6 +137,10 @@ int mimas_box_is_triclinic(const mimas_box *b);
  * bytes: -0 equals 0). */
 int mimas_box_equal(const mimas_box *a, const mimas_box *b);
 double mimas_box_volume(const mimas_box *b);
+/* The fractional coordinates s of x along the box's edge vectors e (mimas_box_edges):
+ * x = lo + s_0 e_0 + s_1 e_1 + s_2 e_2 (0 <= s < 1 inside the box). */
+void mimas_box_fractional(const mimas_box *b, const double e[3][3], const double x[3],
+                          double s[3]);
 /* Rows are the edge vectors a, b, c. */
 void mimas_box_edges(const mimas_box *b, double e[3][3]);
 /* Replaces d by its minimum image along the periodic directions (docs/theory.md §1),

@@ -126,13 +126,10 @@ int mimas_frame_wrap(mimas_frame *f, mimas_error *err)
     mimas_box_edges(b, e);
     for (size_t k = 0; k < p->n; k++) {
         double *x = p->pos[k];
-        /* fractional coordinates (the edge vectors a, b, c form a lower
-         * triangular matrix); a shift by whole edge vectors changes only the
-         * fractional coordinate along that edge */
-        double s[3], r[3] = {x[0] - b->lo[0], x[1] - b->lo[1], x[2] - b->lo[2]};
-        s[2] = r[2] / e[2][2];
-        s[1] = (r[1] - s[2] * e[2][1]) / e[1][1];
-        s[0] = (r[0] - s[2] * e[2][0] - s[1] * e[1][0]) / e[0][0];
+        /* a shift by whole edge vectors changes only the fractional coordinate
+         * along that edge */
+        double s[3];
+        mimas_box_fractional(b, e, x, s);
         for (int d = 2; d >= 0; d--) {
             if (!b->periodic[d] || (s[d] >= 0 && s[d] < 1))
                 continue;

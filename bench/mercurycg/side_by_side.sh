@@ -9,7 +9,8 @@
 # The frame is made once in WORKDIR (default ./mercurycg-run): mimas simulate
 # pack20k.ini, its last frame written as MercuryDPM files p20k.data / p20k.fstat and as a
 # native file p20k.h5.  Both programs write Gauss XYZ fields, w = 1 mm (cutoff 3w), on
-# the 26^3 grid over [0, 26 mm]^3, one thread.
+# the 26^3 grid over [0, 26 mm]^3, one thread; and mimas without a kernel (bins:center) on the
+# native file, the floor of its time.
 set -e
 here=$(cd "$(dirname "$0")" && pwd)
 : "${MERCURYCG:?set MERCURYCG to the MercuryCG binary}"
@@ -29,6 +30,9 @@ grid="x=0:0.026:26,y=0:0.026:26,z=0:0.026:26"
 mcg="'$MERCURYCG' p20k -coordinates XYZ -function Gauss -w 0.001 -n 26 -x 0 0.026 -y 0 0.026 -z 0 0.026 -o p20k.stat"
 mim="'$MIMAS' average p20k.data --contacts p20k.fstat --density 1 --grid $grid --weight gauss:w=0.001 --threads 1 -q --tsv p20k_mimas.tsv"
 nat="'$MIMAS' average p20k.h5 --grid $grid --weight gauss:w=0.001 --threads 1 -q --tsv p20k_native.tsv"
+# the floor: the same command with each object put in one cell (bins:center), which reads the
+# frame, adds its sums and writes the same table; no kernel can make mimas faster than this
+flo="'$MIMAS' average p20k.h5 --grid $grid --weight bins:center --threads 1 -q --tsv p20k_floor.tsv"
 timed() { # LABEL COMMAND: wall and user seconds
     /usr/bin/time -f "%e %U" -o time.txt sh -c "$2 >/dev/null 2>&1"
     set -- "$1" $(cat time.txt)
@@ -40,6 +44,7 @@ while [ "$r" -le "$ROUNDS" ]; do
     timed "MercuryCG ($r)" "$mcg"
     timed "mimas, MercuryDPM input ($r)" "$mim"
     timed "mimas, native input ($r)" "$nat"
+    timed "mimas, native, no kernel ($r)" "$flo"
     r=$((r + 1))
 done
 echo "load after: $(uptime)"
@@ -47,7 +52,7 @@ if [ "${CALLGRIND:-0}" = 1 ]; then
     # mimas sets OMP_WAIT_POLICY=passive by running itself again, which valgrind's
     # tool cannot do: set it here
     export OMP_WAIT_POLICY=passive
-    for prog in mcg mim nat; do
+    for prog in mcg mim nat flo; do
         eval "cmd=\$$prog"
         sh -c "valgrind --tool=callgrind --callgrind-out-file=cg.$prog.out $cmd" >/dev/null 2>&1
         printf '%-4s %s instructions\n' "$prog" "$(sed -n 's/^summary: //p' cg.$prog.out)"

@@ -83,7 +83,7 @@ static size_t compare_builds(const char *grid, const char *weight, int periodic,
     assert_int_equal(mimas_weight_parse(&wt, weight, &err), 0);
     mimas_box box = {{0, 0, 0}, {0.01, 0.012, 0.009}, 0, 0, 0, {periodic, periodic, periodic}};
     mimas_deposit dp;
-    mimas_deposit_init(&dp, &g, &wt, &box, 0);
+    assert_int_equal(mimas_deposit_init(&dp, &g, &wt, &box, 0, &err), MIMAS_OK);
     assert_true(dp.gauss_xyz || dp.gauss_rz);
     mimas_gauss_tables();
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
@@ -219,7 +219,7 @@ static void test_particles_rz(void **state)
         assert_int_equal(mimas_weight_parse(&wt, weights[k], &err), 0);
         mimas_box box = {{0, 0, 0}, {0.011, 0.011, 0.009}, 0, 0, 0, {0, 0, 0}};
         mimas_deposit dp;
-        mimas_deposit_init(&dp, &g, &wt, &box, 0);
+        assert_int_equal(mimas_deposit_init(&dp, &g, &wt, &box, 0, &err), MIMAS_OK);
         assert_true(dp.gauss_rz);
         gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
         gsl_rng_set(rng, 301 + k);
