@@ -101,6 +101,50 @@ static double image_margin(const mimas_deposit *dp)
     return m;
 }
 
+/* A kernel integrated along directions I (its marginal, with the images that differ in the
+ * resolved directions) averages the field over one period of the box along I only when
+ * the box's periods along I lie in I: in a tilted box each periodic edge along an integrated
+ * direction must have no part along a resolved one (the edges e_0, e_1, e_2 of a box are
+ * lower triangular: e_1 = (xy, L_y, 0), e_2 = (xz, yz, L_z)); on a cylindrical grid without
+ * z, some periodic edge must lie along the axis if any has a part along it.  Otherwise the
+ * average would count images of one particle as others (a profile along x in a box tilted by
+ * xy held three times its mass): refused. */
+static int marginal_defined(const mimas_deposit *dp, const mimas_box *box, const double e[3][3],
+                            mimas_error *err)
+{
+    const mimas_grid *g = dp->grid;
+    static const char *tilt[3][3] = {{"", "", ""}, {"xy", "", ""}, {"xz", "yz", ""}};
+    if (g->kind == MIMAS_GRID_CARTESIAN) {
+        for (int d = 0; d < 3; d++)
+            for (int r = 0; r < d; r++)
+                if (box->periodic[d] && !g->gridded[d] && g->gridded[r] && e[d][r] != 0.0)
+                    return mimas_error_set(err, MIMAS_EUSAGE,
+                                           "a kernel averaged along %c (not in --grid) needs "
+                                           "the box's periodic edge along %c without a part "
+                                           "along %c, but it is tilted (%s = %g): grid %c too",
+                                           "xyz"[d], "xyz"[d], "xyz"[r], tilt[d][r], e[d][r],
+                                           "xyz"[d]);
+        return MIMAS_OK;
+    }
+    int along = 0, parallel = 0;
+    for (int d = 0; d < 3; d++) {
+        if (!box->periodic[d])
+            continue;
+        double u = e[d][0] * g->ez[0] + e[d][1] * g->ez[1] + e[d][2] * g->ez[2], p2 = 0.0;
+        for (int k = 0; k < 3; k++)
+            p2 += (e[d][k] - u * g->ez[k]) * (e[d][k] - u * g->ez[k]);
+        double n = sqrt(e[d][0] * e[d][0] + e[d][1] * e[d][1] + e[d][2] * e[d][2]);
+        along |= fabs(u) > 1e-12 * n;
+        parallel |= fabs(u) > 1e-12 * n && sqrt(p2) <= 1e-12 * n;
+    }
+    if (along && !parallel)
+        return mimas_error_set(err, MIMAS_EUSAGE,
+                               "a kernel averaged along the axis (no z in --grid) needs a "
+                               "periodic edge of the box along the axis, but the box repeats "
+                               "along it only with a sideways shift (tilted): grid z too");
+    return MIMAS_OK;
+}
+
 /* The Cartesian bounding box of a grid (a cylindrical one: of its outer cylinder) */
 static void grid_bounds(const mimas_grid *g, double lo[3], double hi[3])
 {
@@ -215,7 +259,8 @@ int mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weigh
     int marginal = dp->kernel && (g->kind == MIMAS_GRID_CARTESIAN ? dp->dims < 3
                                                                   : !g->gridded[2]);
     int range[3] = {0, 0, 0};
-    if (!grid_none && image_range(dp, box, e, marginal, range, err))
+    if (!grid_none && ((marginal && marginal_defined(dp, box, e, err)) ||
+                       image_range(dp, box, e, marginal, range, err)))
         return MIMAS_EUSAGE;
     dp->nshift = 0;
     for (int pass = 0; pass < 2; pass++) /* the zero shift first */
