@@ -61,9 +61,10 @@ typedef struct mimas_deposit {
     double gq[3];          /* e^{-2 h^2 / 2w^2} per direction, for its 1-D factors */
 } mimas_deposit;
 
-/* MIMAS_EUSAGE (in err) when the kernel reaches more than MIMAS_IMAGE_RANGE widths of a
- * periodic box beyond its own (a field that would average over so many images of each
- * particle). */
+/* MIMAS_EUSAGE (in err) when the images a kernel reaches lie more than MIMAS_IMAGE_RANGE
+ * widths of a periodic box away (a field that would average over so many images of each
+ * particle), or when the kernel is integrated along a direction whose periodic edge a tilt
+ * turns into a resolved one (docs/fields.md). */
 int mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,
                        const mimas_box *box, int grid_none, mimas_error *err);
 /* A sphere of radius R at x (R = 0: a point); with_grad: kernels also give
