@@ -52,22 +52,23 @@ double *mimas_weights_scratch(mimas_weights *ws, size_t n)
     return ws->scratch;
 }
 
-/* Whether shift s projects onto the directions a kernel is resolved in like an
- * earlier shift does (its image has the same marginal there). */
-static int same_projection(const mimas_deposit *dp, const mimas_grid *g, int s, int t)
+/* Whether shift u projects onto the directions a kernel is resolved in like shift v does
+ * (an image shifted by u has the same marginal there as one shifted by v). */
+static int same_projection(const mimas_deposit *dp, const mimas_grid *g, const double u[3],
+                           const double v[3])
 {
     double a[3], b[3];
     if (g->kind == MIMAS_GRID_CARTESIAN) {
         for (int k = 0; k < dp->dims; k++) {
-            double x = dp->shift[s][dp->gdir[k]], y = dp->shift[t][dp->gdir[k]];
+            double x = u[dp->gdir[k]], y = v[dp->gdir[k]];
             if (fabs(x - y) > 1e-12 * (fabs(x) + fabs(y)))
                 return 0;
         }
         return 1;
     }
     double o[3] = {0, 0, 0};
-    mimas_grid_to_axis(g, dp->shift[s], a);
-    mimas_grid_to_axis(g, dp->shift[t], b);
+    mimas_grid_to_axis(g, u, a);
+    mimas_grid_to_axis(g, v, b);
     mimas_grid_to_axis(g, o, o);
     for (int k = 0; k < (g->gridded[2] ? 3 : 2); k++) {
         double x = a[k] - o[k], y = b[k] - o[k];
@@ -168,7 +169,7 @@ static void grid_bounds(const mimas_grid *g, double lo[3], double hi[3])
  * triclinic box), the grid reaches e_d = ext_d / W_d beyond it (from the corners of its
  * bounding box), W_d the width between the faces across edge d, and a kernel R / W_d
  * further: the images k with |k| <= 1 + floor(h_d + (R + ext_d) / W_d). */
-static int image_range(mimas_deposit *dp, const mimas_box *box, const double e[3][3],
+static int image_range(const mimas_deposit *dp, const mimas_box *box, const double e[3][3],
                        int marginal, int range[3], mimas_error *err)
 {
     double glo[3], ghi[3], R = dp->kernel ? mimas_weight_reach(dp->wt) : 0.0;
@@ -193,10 +194,9 @@ static int image_range(mimas_deposit *dp, const mimas_box *box, const double e[3
         if (!box->periodic[d])
             continue;
         /* a kernel integrated along the edge takes in all of its images there: the
-         * shifts along it have the same projection as the zero one (same_projection) */
-        memcpy(dp->shift[0], e[d], sizeof dp->shift[0]);
-        memset(dp->shift[1], 0, sizeof dp->shift[1]);
-        if (marginal && same_projection(dp, dp->grid, 0, 1))
+         * shifts along it have the same projection as the zero one */
+        static const double zero[3] = {0, 0, 0};
+        if (marginal && same_projection(dp, dp->grid, e[d], zero))
             continue;
         /* the width across edge d: the volume over the area of the face of the other two */
         const double *u = e[(d + 1) % 3], *v = e[(d + 2) % 3];
@@ -274,7 +274,7 @@ int mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weigh
                         dp->shift[dp->nshift][d] = i * e[0][d] + j * e[1][d] + k * e[2][d];
                     int dup = 0;
                     for (int t = 0; marginal && t < dp->nshift && !dup; t++)
-                        dup = same_projection(dp, g, dp->nshift, t);
+                        dup = same_projection(dp, g, dp->shift[dp->nshift], dp->shift[t]);
                     if (!dup)
                         dp->nshift++;
                 }
