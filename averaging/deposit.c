@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "gauss_legendre.h"
+#include "ring_edges.h"
 #include "overlap.h"
 
 void mimas_weights_free(mimas_weights *ws)
@@ -673,22 +674,31 @@ int dep_ring_rule(const mimas_weight *wt, double len, const double **x, const do
 }
 
 /* The azimuthal average along the segment from a to b (axis frame) at the ring
- * (r, z) by Gauss-Legendre (dep_ring_rule). */
+ * (r, z) by Gauss-Legendre (dep_ring_rule), split where an edge of the average crosses
+ * the segment (ring_edges.h; a kernel averaged over z has its edges at |rho -+ r| = R). */
 static double ring_segment(const mimas_deposit *dp, double r, double z, const double a[3],
                            const double b[3])
 {
     const mimas_weight *wt = dp->wt;
-    double len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
-                      (b[2] - a[2]) * (b[2] - a[2]));
-    const double *xs, *wsg;
-    int n = dep_ring_rule(wt, len, &xs, &wsg);
+    double a2[3] = {a[0], a[1], dp->dims == 3 ? a[2] : 0.0};
+    double b2[3] = {b[0], b[1], dp->dims == 3 ? b[2] : 0.0};
+    mimas_ring_branch br;
+    mimas_ring_nodes nd;
+    mimas_ring_branch_init(&br, a2, b2);
+    int ne = mimas_ring_edge_nodes(&br, wt, r, dp->dims == 3 ? z : 0.0, &nd);
     double sum = 0.0;
+    for (int k = 0; k < ne; k++)
+        sum += nd.w[k] * mimas_kernel_ring(wt, dp->dims, r, nd.rho[k], nd.dz[k], NULL);
+    if (ne >= 0)
+        return sum;
+    const double *xs, *wsg;
+    double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    int n = dep_ring_rule(wt, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), &xs, &wsg);
     for (int k = 0; k < n; k++) {
-        double t, wgt, p[3];
+        double t, wgt;
         gl_node(xs, wsg, n, k, 0.0, 1.0, &t, &wgt);
-        for (int m = 0; m < 3; m++)
-            p[m] = a[m] + t * (b[m] - a[m]);
-        sum += wgt * mimas_kernel_ring(wt, dp->dims, r, hypot(p[0], p[1]), z - p[2], NULL);
+        double p0 = a[0] + t * d[0], p1 = a[1] + t * d[1], p2 = a[2] + t * d[2];
+        sum += wgt * mimas_kernel_ring(wt, dp->dims, r, hypot(p0, p1), z - p2, NULL);
     }
     return sum;
 }

@@ -15,6 +15,7 @@
 #include "deposit_impl.h"
 #include "gauss_legendre.h"
 #include "lanes_x86.h"
+#include "ring_edges.h"
 #include "ring_tables.h"
 
 /* The average at the ring (r, z-offset dz) given (r - rho)^2. */
@@ -96,6 +97,7 @@ static inline void ring_sqrt_p(const lane_v4 *Y, lane_v4 *r)
 #define RING_REACH_FN ring_reach
 #define RING_LANES_FN ring_lanes
 #define RING_CELLS_FN ring_cells
+#define RING_SUM_FN ring_sum
 #define RING_SEG_FN mimas_gauss_segment_rz_portable
 #define RING_SPHERE_FN mimas_gauss_sphere_rz_portable
 #include "deposit_ring_lanes.h"
@@ -115,6 +117,7 @@ static inline void ring_sqrt_p(const lane_v4 *Y, lane_v4 *r)
 #define RING_REACH_FN ring_reach_avx2
 #define RING_LANES_FN ring_lanes_avx2
 #define RING_CELLS_FN ring_cells_avx2
+#define RING_SUM_FN ring_sum_avx2
 #define RING_SEG_FN mimas_gauss_segment_rz_avx2
 #define RING_SPHERE_FN mimas_gauss_sphere_rz_avx2
 #include "deposit_ring_lanes.h"
@@ -136,6 +139,7 @@ static inline void ring_sqrt_p(const lane_v4 *Y, lane_v4 *r)
 #define RING_REACH_FN ring_reach_avx512
 #define RING_LANES_FN ring_lanes_avx512
 #define RING_CELLS_FN ring_cells_avx512
+#define RING_SUM_FN ring_sum_avx512
 #define RING_SEG_FN mimas_gauss_segment_rz_avx512
 #define RING_SPHERE_FN mimas_gauss_sphere_rz_avx512
 #include "deposit_ring_lanes.h"

@@ -98,6 +98,33 @@ static inline int RING_LANES_FN(const mimas_deposit *dp, const double *dr2, cons
     return 1;
 }
 
+/* The rule's sum at one cell over n nodes (a multiple of RING_W): their offsets' squares d2
+ * and z offsets z, 1/(4 r rho) ir, distances from the axis rho and weights w. */
+static inline double RING_SUM_FN(const mimas_deposit *dp, double r, const double *d2,
+                                 const double *z, const double *ir, const double *rho,
+                                 const double *w, int n, double norm)
+{
+    double sum = 0.0;
+    for (int q = 0; q < n; q += RING_W) {
+        double val[RING_W];
+        int flag;
+        if (!RING_LANES_FN(dp, d2 + q, z + q, ir + q, norm, val, &flag))
+            continue;
+        if (!flag) { /* the lanes' values, in the same order */
+            for (int l = 0; l < RING_W; l++)
+                sum += w[q + l] * val[l];
+            continue;
+        }
+        for (int l = 0; l < RING_W; l++) {
+            double v = flag >> l & 1
+                           ? ring_value(dp->wt, r, rho[q + l], z[q + l], d2[q + l], NULL)
+                           : val[l];
+            sum += w[q + l] * v;
+        }
+    }
+    return sum;
+}
+
 int RING_SEG_FN(const mimas_deposit *dp, const double aa[3], const double ab[3], const double am[3],
                 double reach, double scale, mimas_weights *ws)
 {
@@ -114,13 +141,14 @@ int RING_SEG_FN(const mimas_deposit *dp, const double aa[3], const double ab[3],
     if (cell_box(dp, am, reach, lo, hi, ws, &ok) || !ok)
         return ok ? MIMAS_EIO : MIMAS_OK;
     int nr = hi[0] - lo[0] + 1, nz = hi[2] - lo[2] + 1;
-    /* per branch point q: rho_q, z_q, its weight; per column and point: the offset's
-     * square and 1/(4 r rho) (0 on the axis: flagged); per row and point: the offset */
-    double *t = mimas_weights_scratch(ws, 3 * (size_t)n + nr + (size_t)n * (2 * nr + nz));
+    /* per branch point q: rho_q, z_q, its weight; per column and row: the centre; per
+     * column and point: the offset's square and 1/(4 r rho) (0 on the axis: flagged); per
+     * row and point: the offset */
+    double *t = mimas_weights_scratch(ws, 3 * (size_t)n + nr + nz + (size_t)n * (2 * nr + nz));
     if (!t)
         return MIMAS_EIO;
-    double *rho = t, *zq = t + n, *wq = t + 2 * n, *rc = t + 3 * n, *dr2 = rc + nr;
-    double *irr = dr2 + (size_t)n * nr, *dz = irr + (size_t)n * nr;
+    double *rho = t, *zq = t + n, *wq = t + 2 * n, *rc = t + 3 * n, *zc = rc + nr;
+    double *dr2 = zc + nz, *irr = dr2 + (size_t)n * nr, *dz = irr + (size_t)n * nr;
     for (int q = 0; q < n; q++) {
         double s, p[3];
         gl_node(xs, wsg, n, q, 0.0, 1.0, &s, &wq[q]);
@@ -138,33 +166,23 @@ int RING_SEG_FN(const mimas_deposit *dp, const double aa[3], const double ab[3],
         }
     }
     for (int j = 0; j < nz; j++) {
-        double zc = dep_centre(dp, 2, lo[2] + j);
+        zc[j] = dep_centre(dp, 2, lo[2] + j);
         for (int q = 0; q < n; q++)
-            dz[j * n + q] = zc - zq[q];
+            dz[j * n + q] = zc[j] - zq[q];
     }
+    /* where an edge of the average crosses the branch, the rule split there */
+    mimas_ring_branch br;
+    mimas_ring_branch_init(&br, aa, ab);
+    mimas_ring_nodes nd;
     int idx[3] = {0, lo[1], 0};
     double norm = wt->coef / M_PI;
     for (int j = 0; j < nz; j++)
         for (int i = 0; i < nr; i++) {
-            double sum = 0.0;
-            for (int q = 0; q < n; q += RING_W) {
-                double val[RING_W];
-                int flag;
-                const double *d2 = dr2 + i * n + q, *z = dz + j * n + q, *ir = irr + i * n + q;
-                if (!RING_LANES_FN(dp, d2, z, ir, norm, val, &flag))
-                    continue;
-                if (!flag) { /* the lanes' values, in the same order */
-                    for (int l = 0; l < RING_W; l++)
-                        sum += wq[q + l] * val[l];
-                    continue;
-                }
-                for (int l = 0; l < RING_W; l++) {
-                    double v = flag >> l & 1
-                                   ? ring_value(wt, rc[i], rho[q + l], z[l], d2[l], NULL)
-                                   : val[l];
-                    sum += wq[q + l] * v;
-                }
-            }
+            int ne = mimas_ring_edge_nodes(&br, wt, rc[i], zc[j], &nd);
+            double sum = ne < 0 ? RING_SUM_FN(dp, rc[i], dr2 + i * n, dz + j * n, irr + i * n,
+                                              rho, wq, n, norm)
+                                : RING_SUM_FN(dp, rc[i], nd.dr2, nd.dz, nd.irr, nd.rho, nd.w,
+                                              ne, norm);
             if (sum == 0.0)
                 continue;
             idx[0] = lo[0] + i;
@@ -304,6 +322,7 @@ int RING_SPHERE_FN(const mimas_deposit *dp, const double a[3], int with_grad, do
 #undef RING_REACH_FN
 #undef RING_LANES_FN
 #undef RING_CELLS_FN
+#undef RING_SUM_FN
 #undef RING_SEG_FN
 #undef RING_SPHERE_FN
 #undef RING_NARROW

@@ -1,0 +1,299 @@
+/* The edges of a kernel's azimuthal average along a branch and the rule split at them
+ * (ring_edges.h).  Compiled once, for every build of the r-z deposits: their edge cells
+ * get the same nodes to the bit. */
+#include <config.h>
+
+#include <math.h>
+
+#include <gsl/gsl_poly.h>
+
+#include "deposit_impl.h"
+#include "gauss_legendre.h"
+#include "ring_edges.h"
+
+void mimas_ring_branch_init(mimas_ring_branch *br, const double a[3], const double ab[3])
+{
+    for (int m = 0; m < 3; m++) {
+        br->a[m] = a[m];
+        br->b[m] = ab[m] - a[m];
+    }
+    br->q[0] = a[0] * a[0] + a[1] * a[1];
+    br->q[1] = 2.0 * (a[0] * br->b[0] + a[1] * br->b[1]);
+    br->q[2] = br->b[0] * br->b[0] + br->b[1] * br->b[1];
+}
+
+/* the quartic and its derivative at s (Horner) */
+static double quartic(const double c[5], double s, double *d)
+{
+    double v = c[4], dv = 0.0;
+    for (int k = 3; k >= 0; k--) {
+        dv = dv * s + v;
+        v = v * s + c[k];
+    }
+    *d = dv;
+    return v;
+}
+
+/* The root in [a, b] where the quartic is monotone and changes sign (fa its value at a):
+ * Newton's steps kept inside the bracket, which each step narrows. */
+static double bracketed_root(const double c[5], double a, double b, double fa)
+{
+    double x = 0.5 * (a + b);
+    for (int it = 0; it < 100; it++) {
+        double d, f = quartic(c, x, &d);
+        if (f == 0.0)
+            return x;
+        if ((f < 0) == (fa < 0))
+            a = x;
+        else
+            b = x;
+        double next = d != 0.0 ? x - f / d : a;
+        if (!(next > a && next < b))
+            next = 0.5 * (a + b);
+        /* to 1e-13 of the branch: a split that far from the edge changes the integral by
+         * about (1e-13)^{3/2} of the kernel's peak */
+        if (fabs(next - x) < 1e-13 || b - a < 1e-13)
+            return next;
+        x = next;
+    }
+    return x;
+}
+
+/* The roots in [a, b] by subdivision: an interval where the quartic's Taylor expansion
+ * about the midpoint cannot reach zero has none; one where its derivative cannot has one
+ * if the ends differ in sign (the ends from the same expression in every interval, so a
+ * root at a shared end counts once).  Below 2^-48 of the branch an interval holds a
+ * root where the branch only touches an edge: none is counted. */
+static void roots_in(const double c[5], double a, double b, int depth, double *s, int *n)
+{
+    double m = 0.5 * (a + b), h = 0.5 * (b - a), e[5];
+    for (int k = 0; k < 5; k++)
+        e[k] = c[k];
+    for (int i = 0; i < 4; i++) /* e: the coefficients of Q(m + t) */
+        for (int j = 3; j >= i; j--)
+            e[j] += m * e[j + 1];
+    double hk = 1.0, bound = 0.0, slope = 0.0;
+    for (int k = 1; k < 5; k++) {
+        hk *= h;
+        e[k] *= hk;
+        bound += fabs(e[k]);
+        if (k > 1)
+            slope += k * fabs(e[k]);
+    }
+    const double margin = 1.0 + 1e-12; /* rounding must not exclude a root */
+    if (fabs(e[0]) > margin * bound || *n == 4)
+        return;
+    if (fabs(e[1]) > margin * slope) {
+        double d, fa = quartic(c, a, &d), fb = quartic(c, b, &d);
+        if ((fa < 0) != (fb < 0))
+            s[(*n)++] = bracketed_root(c, a, b, fa);
+        return;
+    }
+    if (depth == 48)
+        return;
+    roots_in(c, a, m, depth + 1, s, n);
+    roots_in(c, m, b, depth + 1, s, n);
+}
+
+/* Q's coefficients at the ring (r, z): P = q + r^2 + dz^2 - R^2 with dz = d0 - bz s,
+ * Q = P^2 - 4 r^2 q, negative where the ring is partly inside the support, zero on
+ * either edge; 0 for a branch of no length (Q constant). */
+static int quartic_at(const mimas_ring_branch *br, double r, double z, double R2, double c[5])
+{
+    const double *q = br->q;
+    double d0 = z - br->a[2], bz = br->b[2], r2 = r * r;
+    double p0 = q[0] + r2 + d0 * d0 - R2, p1 = q[1] - 2.0 * d0 * bz, p2 = q[2] + bz * bz;
+    c[0] = p0 * p0 - 4.0 * r2 * q[0];
+    c[1] = 2.0 * p0 * p1 - 4.0 * r2 * q[1];
+    c[2] = p1 * p1 + 2.0 * p0 * p2 - 4.0 * r2 * q[2];
+    c[3] = 2.0 * p1 * p2;
+    c[4] = p2 * p2;
+    return p2 > 0;
+}
+
+int mimas_ring_edges(const mimas_ring_branch *br, double r, double z, double R2, double lo,
+                     double hi, double s[4])
+{
+    double c[5];
+    int n = 0;
+    if (quartic_at(br, r, z, R2, c))
+        roots_in(c, lo, hi, 0, s, &n);
+    return n;
+}
+
+/* a node at s of weight w */
+static void put_node(const mimas_ring_branch *br, double r, double z, double s, double w,
+                     mimas_ring_nodes *nd, int k)
+{
+    double p0 = br->a[0] + s * br->b[0], p1 = br->a[1] + s * br->b[1];
+    double rho = sqrt(p0 * p0 + p1 * p1), rr = 4.0 * r * rho;
+    nd->w[k] = w;
+    nd->rho[k] = rho;
+    nd->dz[k] = z - (br->a[2] + s * br->b[2]);
+    nd->dr2[k] = (r - rho) * (r - rho);
+    nd->irr[k] = rr > 0 ? 1.0 / rr : INFINITY;
+}
+
+/* A singular point of the average along the branch: an edge (g = 0) at s, or a pair
+ * s +- i g off the real line (the branch nearly touching an edge, or passing near the
+ * axis, where rho = sqrt(q) has its branch points). */
+typedef struct sing_pt {
+    double s, g;
+} sing_pt;
+
+/* The rule of m points (8 or 16; 16 where the map stretches the piece to more than 2 in
+ * u) on [s0, s1] in u with the singular point p at one end made smooth: for an edge,
+ * s = p + (s1 - p) u^2 (p <= s0) or s = p - (p - s0) u^2 (p >= s1), under which the
+ * square root is smooth; for a pair, s = p.s + p.g sinh(u), under which
+ * sqrt((s - p.s)^2 + p.g^2) is (Johnston and Elliott's sinh transformation); no p: plain. */
+static int piece_nodes(const mimas_ring_branch *br, double r, double z, double s0, double s1,
+                       const sing_pt *p, int m, mimas_ring_nodes *nd, int n)
+{
+    const double *xs = m == 16 ? gl16_x : gl8_x, *ws = m == 16 ? gl16_w : gl8_w;
+    double u0 = 0.0, u1 = 1.0;
+    if (p && p->g > 0) {
+        u0 = asinh((s0 - p->s) / p->g);
+        u1 = asinh((s1 - p->s) / p->g);
+    } else if (p) {
+        double c = p->s <= s0 ? s1 - p->s : p->s - s0;
+        u0 = sqrt((p->s <= s0 ? s0 - p->s : p->s - s1) / c);
+    }
+    if (u1 - u0 > 2.0)
+        xs = gl16_x, ws = gl16_w, m = 16;
+    for (int i = 0; i < m; i++) {
+        double u, wu;
+        gl_node(xs, ws, m, i, u0, u1, &u, &wu);
+        if (p && p->g > 0) {
+            put_node(br, r, z, p->s + p->g * sinh(u), p->g * cosh(u) * wu, nd, n++);
+        } else if (p) {
+            double c = p->s <= s0 ? s1 - p->s : p->s - s0, dir = p->s <= s0 ? 1.0 : -1.0;
+            put_node(br, r, z, p->s + dir * c * u * u, 2.0 * c * u * wu, nd, n++);
+        } else {
+            put_node(br, r, z, s0 + (s1 - s0) * u, (s1 - s0) * wu, nd, n++);
+        }
+    }
+    return n;
+}
+
+/* The rule on [s0, s1] made smooth at the one singular point within its length of it;
+ * where there are more, halved, until the halves have one or none (or the room for nodes
+ * runs out: then the nearest).  8 points, 16 where the piece is longer than 2 w (len the
+ * branch's length) or its map stretches it. */
+static int piece_split(const mimas_ring_branch *br, const mimas_weight *wt, double len,
+                       double r, double z, double s0, double s1, const sing_pt *pt, int np,
+                       mimas_ring_nodes *nd, int n)
+{
+    double ds = s1 - s0, best = ds * ds;
+    const sing_pt *p = NULL;
+    int near = 0;
+    for (int i = 0; i < np; i++) {
+        double off = pt[i].s < s0 ? s0 - pt[i].s : (pt[i].s > s1 ? pt[i].s - s1 : 0.0);
+        double d = off * off + pt[i].g * pt[i].g;
+        if (d < ds * ds) {
+            near++;
+            if (d <= best)
+                p = &pt[i], best = d;
+        }
+    }
+    if (near > 1 && n + 64 <= MIMAS_RING_NODES_MAX) {
+        n = piece_split(br, wt, len, r, z, s0, s0 + 0.5 * ds, pt, np, nd, n);
+        return piece_split(br, wt, len, r, z, s0 + 0.5 * ds, s1, pt, np, nd, n);
+    }
+    const double *xs, *ws;
+    int m = dep_ring_rule(wt, ds * len, &xs, &ws) == 16 ? 16 : 8;
+    return piece_nodes(br, r, z, s0, s1, p, m, nd, n);
+}
+
+/* The singular points within reach of the branch (real parts in [lo, hi]): Q's real roots,
+ * the complex pairs where Q turns without reaching zero (from the roots of the cubic
+ * Q', GSL; g from Q's parabola there), and the nearest approach to the axis. */
+static int singular_points(const mimas_ring_branch *br, const double c[5], double lo,
+                           double hi, sing_pt *pt)
+{
+    double root[4], t[3];
+    int k = 0, n = 0;
+    roots_in(c, lo, hi, 0, root, &k);
+    for (int i = 0; i < k; i++)
+        pt[n++] = (sing_pt){root[i], 0.0};
+    int nt = gsl_poly_solve_cubic(0.75 * c[3] / c[4], 0.5 * c[2] / c[4], 0.25 * c[1] / c[4],
+                                  &t[0], &t[1], &t[2]);
+    for (int i = 0; i < nt; i++) {
+        double d, v = quartic(c, t[i], &d);
+        double curv = 2.0 * c[2] + t[i] * (6.0 * c[3] + 12.0 * c[4] * t[i]); /* Q'' */
+        if (t[i] >= lo && t[i] <= hi && v * curv > 0)
+            pt[n++] = (sing_pt){t[i], sqrt(2.0 * v / curv)};
+    }
+    const double *q = br->q;
+    if (q[2] > 0) {
+        double star = -0.5 * q[1] / q[2];
+        double beta = sqrt(fmax(q[0] / q[2] - star * star, 0.0));
+        if (star >= lo && star <= hi)
+            pt[n++] = (sing_pt){star, beta};
+    }
+    return n;
+}
+
+/* Whether a singular point may be within h of the branch's middle (s = 1/2): Q's roots
+ * (Taylor's bound, as in roots_in, holds on the complex disc) or the axis. */
+static int near_disc(const double c[5], const double q[3], double h)
+{
+    double e[5];
+    for (int k = 0; k < 5; k++)
+        e[k] = c[k];
+    for (int i = 0; i < 4; i++)
+        for (int j = 3; j >= i; j--)
+            e[j] += 0.5 * e[j + 1];
+    double hk = 1.0, bound = 0.0;
+    for (int k = 1; k < 5; k++)
+        bound += fabs(e[k]) * (hk *= h);
+    double star = q[2] > 0 ? -0.5 * q[1] / q[2] : 0.0;
+    double axis2 = q[2] > 0 ? q[0] / q[2] - star * star + (star - 0.5) * (star - 0.5) : INFINITY;
+    return !(fabs(e[0]) > (1.0 + 1e-12) * bound) || axis2 < h * h;
+}
+
+int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, double r,
+                          double z, mimas_ring_nodes *nd)
+{
+    /* the plain rule (dep_ring_rule, 4 to 16 points) is accurate to 1e-9 of the kernel's
+     * peak where no singular point is within a disc about the branch's middle, of radius
+     * 4, 1.5 or 1 branch lengths for the rules of 4, 8 and 16 points */
+    const double *b = br->b, *q = br->q;
+    double len = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]), c[5];
+    const double *xs, *wsg;
+    int rule = dep_ring_rule(wt, len, &xs, &wsg);
+    double h = rule == 4 ? 4.0 : (rule == 8 ? 1.5 : 1.0), lo = 0.5 - h, hi = 0.5 + h;
+    if (!quartic_at(br, r, z, wt->reach2, c))
+        return -1;
+    if (!near_disc(c, q, h))
+        return -1;
+    sing_pt pt[8];
+    int np = singular_points(br, c, lo, hi, pt), n = 0;
+    /* the pieces: between the edges and the real parts of the pairs within the branch */
+    double cut[10] = {0.0};
+    int nc = 1;
+    for (int i = 0; i < np; i++)
+        if (pt[i].s > 0.0 && pt[i].s < 1.0)
+            cut[nc++] = pt[i].s;
+    cut[nc++] = 1.0;
+    for (int i = 2; i < nc - 1; i++) /* ascending (few) */
+        for (int j = i; j > 1 && cut[j] < cut[j - 1]; j--) {
+            double tmp = cut[j];
+            cut[j] = cut[j - 1];
+            cut[j - 1] = tmp;
+        }
+    for (int p = 0; p + 1 < nc; p++) {
+        double s0 = cut[p], s1 = cut[p + 1], ds = s1 - s0, mid = s0 + 0.5 * ds;
+        if (!(ds > 0))
+            continue;
+        double x = br->a[0] + mid * b[0], y = br->a[1] + mid * b[1], rho = sqrt(x * x + y * y);
+        double dz = z - (br->a[2] + mid * b[2]);
+        if (!((r - rho) * (r - rho) + dz * dz < wt->reach2))
+            continue; /* a piece outside the support (between edges: all of it) */
+        n = piece_split(br, wt, len, r, z, s0, s1, pt, np, nd, n);
+    }
+    for (; n % 8; n++) { /* out of reach, no weight */
+        nd->w[n] = nd->rho[n] = nd->dz[n] = 0.0;
+        nd->dr2[n] = nd->irr[n] = INFINITY;
+    }
+    return n;
+}

@@ -1,0 +1,50 @@
+/* A kernel's azimuthal average along a contact's branch on an r-z grid: where the
+ * average has its edges along the branch, and the quadrature nodes that split the
+ * branch there (docs/fields.md, "Cylindrical grids without phi cells").
+ *
+ * The average at the ring (r, z) of the kernel around a point at distance rho from the
+ * axis is cut where the ring leaves the kernel's support, (rho - r)^2 + dz^2 = R^2, and
+ * where all of it enters, (rho + r)^2 + dz^2 = R^2; at both it goes as the square root of
+ * the distance from the edge, which a rule along the whole branch does not integrate to
+ * more than about 1e-4 of the kernel's peak.  Along the branch a + s b the two edges are
+ * the roots in s of one quartic, (q + r^2 + dz^2 - R^2)^2 = 4 r^2 q with q = |a + s b|^2
+ * across the axis; the pieces between them are integrated each with its own rule in
+ * u, s = s0 + (s1 - s0) u^2 (3 - 2u), under which the square root at either end is
+ * smooth. */
+#ifndef MIMAS_RING_EDGES_H
+#define MIMAS_RING_EDGES_H
+
+#include "weight.h"
+
+/* A branch a -> a + b in the grid's axis frame. */
+typedef struct mimas_ring_branch {
+    double a[3], b[3];
+    double q[3]; /* its squared distance from the axis, q[0] + q[1] s + q[2] s^2 */
+} mimas_ring_branch;
+
+void mimas_ring_branch_init(mimas_ring_branch *br, const double a[3], const double ab[3]);
+
+/* The parameters s in [lo, hi] where an edge of the average at the ring (r, z) with reach^2
+ * R2 crosses the branch's line, ascending (at most 4; a root where the line touches an edge
+ * without crossing it is not one). */
+int mimas_ring_edges(const mimas_ring_branch *br, double r, double z, double R2, double lo,
+                     double hi, double s[4]);
+
+/* The nodes of the split rule at one ring: up to 18 pieces of up to 16 nodes, padded to a
+ * multiple of 8 with nodes out of reach (weight 0, dr2 infinite). */
+#define MIMAS_RING_NODES_MAX 288
+typedef struct mimas_ring_nodes {
+    double w[MIMAS_RING_NODES_MAX];   /* the weight of each (its share of s in [0, 1]) */
+    double rho[MIMAS_RING_NODES_MAX]; /* its distance from the axis */
+    double dz[MIMAS_RING_NODES_MAX];  /* the ring's z minus the node's */
+    double dr2[MIMAS_RING_NODES_MAX]; /* (r - rho)^2 */
+    double irr[MIMAS_RING_NODES_MAX]; /* 1/(4 r rho), infinite on the axis */
+} mimas_ring_nodes;
+
+/* The split rule for the branch at the ring (r, z) of wt's average: -1 when no edge
+ * crosses the branch (the rule along the whole branch is smooth there), else the number
+ * of nodes (0 when every piece is outside the support: the ring has no weight). */
+int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, double r,
+                          double z, mimas_ring_nodes *nd);
+
+#endif
