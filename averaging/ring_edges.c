@@ -34,11 +34,14 @@ static double quartic(const double c[5], double s, double *d)
     return v;
 }
 
-/* The root in [a, b] where the quartic is monotone and changes sign (fa its value at a):
- * Newton's steps kept inside the bracket, which each step narrows. */
-static double bracketed_root(const double c[5], double a, double b, double fa)
+/* The root in [a, b] where the quartic is monotone and changes sign (fa, fb its values at
+ * the ends): Newton's steps from the secant's root, kept inside the bracket, which each
+ * step narrows. */
+static double bracketed_root(const double c[5], double a, double b, double fa, double fb)
 {
-    double x = 0.5 * (a + b);
+    double x = a - fa * (b - a) / (fb - fa);
+    if (!(x > a && x < b))
+        x = 0.5 * (a + b);
     for (int it = 0; it < 100; it++) {
         double d, f = quartic(c, x, &d);
         if (f == 0.0)
@@ -50,49 +53,13 @@ static double bracketed_root(const double c[5], double a, double b, double fa)
         double next = d != 0.0 ? x - f / d : a;
         if (!(next > a && next < b))
             next = 0.5 * (a + b);
-        /* to 1e-13 of the branch: a split that far from the edge changes the integral by
-         * about (1e-13)^{3/2} of the kernel's peak */
-        if (fabs(next - x) < 1e-13 || b - a < 1e-13)
+        /* to 1e-10 of the branch: a split that far from the edge changes the integral by
+         * about (1e-10)^{3/2} = 1e-15 of the kernel's peak */
+        if (fabs(next - x) < 1e-10 || b - a < 1e-10)
             return next;
         x = next;
     }
     return x;
-}
-
-/* The roots in [a, b] by subdivision: an interval where the quartic's Taylor expansion
- * about the midpoint cannot reach zero has none; one where its derivative cannot has one
- * if the ends differ in sign (the ends from the same expression in every interval, so a
- * root at a shared end counts once).  Below 2^-48 of the branch an interval holds a
- * root where the branch only touches an edge: none is counted. */
-static void roots_in(const double c[5], double a, double b, int depth, double *s, int *n)
-{
-    double m = 0.5 * (a + b), h = 0.5 * (b - a), e[5];
-    for (int k = 0; k < 5; k++)
-        e[k] = c[k];
-    for (int i = 0; i < 4; i++) /* e: the coefficients of Q(m + t) */
-        for (int j = 3; j >= i; j--)
-            e[j] += m * e[j + 1];
-    double hk = 1.0, bound = 0.0, slope = 0.0;
-    for (int k = 1; k < 5; k++) {
-        hk *= h;
-        e[k] *= hk;
-        bound += fabs(e[k]);
-        if (k > 1)
-            slope += k * fabs(e[k]);
-    }
-    const double margin = 1.0 + 1e-12; /* rounding must not exclude a root */
-    if (fabs(e[0]) > margin * bound || *n == 4)
-        return;
-    if (fabs(e[1]) > margin * slope) {
-        double d, fa = quartic(c, a, &d), fb = quartic(c, b, &d);
-        if ((fa < 0) != (fb < 0))
-            s[(*n)++] = bracketed_root(c, a, b, fa);
-        return;
-    }
-    if (depth == 48)
-        return;
-    roots_in(c, a, m, depth + 1, s, n);
-    roots_in(c, m, b, depth + 1, s, n);
 }
 
 /* Q's coefficients at the ring (r, z): P = q + r^2 + dz^2 - R^2 with dz = d0 - bz s,
@@ -109,16 +76,6 @@ static int quartic_at(const mimas_ring_branch *br, double r, double z, double R2
     c[3] = 2.0 * p1 * p2;
     c[4] = p2 * p2;
     return p2 > 0;
-}
-
-int mimas_ring_edges(const mimas_ring_branch *br, double r, double z, double R2, double lo,
-                     double hi, double s[4])
-{
-    double c[5];
-    int n = 0;
-    if (quartic_at(br, r, z, R2, c))
-        roots_in(c, lo, hi, 0, s, &n);
-    return n;
 }
 
 /* a node at s of weight w */
@@ -205,24 +162,34 @@ static int piece_split(const mimas_ring_branch *br, const mimas_weight *wt, doub
 }
 
 /* The singular points within reach of the branch (real parts in [lo, hi]): Q's real roots,
- * the complex pairs where Q turns without reaching zero (from the roots of the cubic
- * Q', GSL; g from Q's parabola there), and the nearest approach to the axis. */
+ * bracketed by its turning points (the roots of the cubic Q', GSL's solver), the complex
+ * pairs where it turns without reaching zero (g from Q's parabola there), and the nearest
+ * approach to the axis. */
 static int singular_points(const mimas_ring_branch *br, const double c[5], double lo,
                            double hi, sing_pt *pt)
 {
-    double root[4], t[3];
-    int k = 0, n = 0;
-    roots_in(c, lo, hi, 0, root, &k);
-    for (int i = 0; i < k; i++)
-        pt[n++] = (sing_pt){root[i], 0.0};
+    /* Q' = 4 c4 s^3 + 3 c3 s^2 + 2 c2 s + c1: its real roots, ascending, are where Q turns */
+    double t[3], x[5], f[5], d;
     int nt = gsl_poly_solve_cubic(0.75 * c[3] / c[4], 0.5 * c[2] / c[4], 0.25 * c[1] / c[4],
                                   &t[0], &t[1], &t[2]);
+    int nx = 0, n = 0;
+    x[nx++] = lo;
     for (int i = 0; i < nt; i++) {
-        double d, v = quartic(c, t[i], &d);
+        double v = quartic(c, t[i], &d);
         double curv = 2.0 * c[2] + t[i] * (6.0 * c[3] + 12.0 * c[4] * t[i]); /* Q'' */
-        if (t[i] >= lo && t[i] <= hi && v * curv > 0)
+        if (!(t[i] > lo && t[i] < hi))
+            continue;
+        x[nx++] = t[i];
+        if (v * curv > 0) /* a minimum above zero or a maximum below: a pair */
             pt[n++] = (sing_pt){t[i], sqrt(2.0 * v / curv)};
     }
+    x[nx++] = hi;
+    /* between turning points Q is monotone: a root where it changes sign */
+    for (int i = 0; i < nx; i++)
+        f[i] = quartic(c, x[i], &d);
+    for (int i = 0; i + 1 < nx; i++)
+        if ((f[i] < 0) != (f[i + 1] < 0))
+            pt[n++] = (sing_pt){bracketed_root(c, x[i], x[i + 1], f[i], f[i + 1]), 0.0};
     const double *q = br->q;
     if (q[2] > 0) {
         double star = -0.5 * q[1] / q[2];
@@ -233,8 +200,9 @@ static int singular_points(const mimas_ring_branch *br, const double c[5], doubl
     return n;
 }
 
-/* Whether a singular point may be within h of the branch's middle (s = 1/2): Q's roots
- * (Taylor's bound, as in roots_in, holds on the complex disc) or the axis. */
+/* Whether a singular point may be within h of the branch's middle (s = 1/2): a root of Q
+ * (none where |Q(1/2)| exceeds sum_k |e_k| h^k, e_k the coefficients of Q(1/2 + t),
+ * which bounds |Q(1/2 + t) - Q(1/2)| on the complex disc |t| <= h) or the axis. */
 static int near_disc(const double c[5], const double q[3], double h)
 {
     double e[5];

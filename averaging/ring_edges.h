@@ -24,12 +24,6 @@ typedef struct mimas_ring_branch {
 
 void mimas_ring_branch_init(mimas_ring_branch *br, const double a[3], const double ab[3]);
 
-/* The parameters s in [lo, hi] where an edge of the average at the ring (r, z) with reach^2
- * R2 crosses the branch's line, ascending (at most 4; a root where the line touches an edge
- * without crossing it is not one). */
-int mimas_ring_edges(const mimas_ring_branch *br, double r, double z, double R2, double lo,
-                     double hi, double s[4]);
-
 /* The nodes of the split rule at one ring: up to 18 pieces of up to 16 nodes, padded to a
  * multiple of 8 with nodes out of reach (weight 0, dr2 infinite). */
 #define MIMAS_RING_NODES_MAX 288
