@@ -135,10 +135,12 @@ static int piece_nodes(const mimas_ring_branch *br, double r, double z, double s
 /* The rule on [s0, s1] made smooth at the one singular point within its length of it;
  * where there are more, halved, until the halves have one or none (or the room for nodes
  * runs out: then the nearest).  8 points, 16 where the piece is longer than 2 w (len the
- * branch's length) or its map stretches it. */
+ * branch's length) or its map stretches it.  Room: a piece is entered with room for its 16
+ * and 16 for each of the pending pieces after it, and halved only if there is room for one
+ * more: so it never takes theirs. */
 static int piece_split(const mimas_ring_branch *br, const mimas_weight *wt, double len,
                        double r, double z, double s0, double s1, const sing_pt *pt, int np,
-                       mimas_ring_nodes *nd, int n)
+                       int pending, mimas_ring_nodes *nd, int n)
 {
     double ds = s1 - s0, best = ds * ds;
     const sing_pt *p = NULL;
@@ -152,9 +154,9 @@ static int piece_split(const mimas_ring_branch *br, const mimas_weight *wt, doub
                 p = &pt[i], best = d;
         }
     }
-    if (near > 1 && n + 64 <= MIMAS_RING_NODES_MAX) {
-        n = piece_split(br, wt, len, r, z, s0, s0 + 0.5 * ds, pt, np, nd, n);
-        return piece_split(br, wt, len, r, z, s0 + 0.5 * ds, s1, pt, np, nd, n);
+    if (near > 1 && n + 16 * (pending + 2) <= MIMAS_RING_NODES_MAX) {
+        n = piece_split(br, wt, len, r, z, s0, s0 + 0.5 * ds, pt, np, pending + 1, nd, n);
+        return piece_split(br, wt, len, r, z, s0 + 0.5 * ds, s1, pt, np, pending, nd, n);
     }
     const double *xs, *ws;
     int m = dep_ring_rule(wt, ds * len, &xs, &ws) == 16 ? 16 : 8;
@@ -200,23 +202,24 @@ static int singular_points(const mimas_ring_branch *br, const double c[5], doubl
     return n;
 }
 
-/* Whether a singular point may be within h of the branch's middle (s = 1/2): a root of Q
- * (none where |Q(1/2)| exceeds sum_k |e_k| h^k, e_k the coefficients of Q(1/2 + t),
- * which bounds |Q(1/2 + t) - Q(1/2)| on the complex disc |t| <= h) or the axis. */
-static int near_disc(const double c[5], const double q[3], double h)
+/* e: the coefficients of Q(1/2 + t). */
+static void about_middle(const double c[5], double e[5])
 {
-    double e[5];
     for (int k = 0; k < 5; k++)
         e[k] = c[k];
     for (int i = 0; i < 4; i++)
         for (int j = 3; j >= i; j--)
             e[j] += 0.5 * e[j + 1];
+}
+
+/* Whether Q may have a root within h of the branch's middle: not where |Q(1/2)| exceeds
+ * sum_k |e_k| h^k, which bounds |Q(1/2 + t) - Q(1/2)| on the complex disc |t| <= h. */
+static int root_near(const double e[5], double h)
+{
     double hk = 1.0, bound = 0.0;
     for (int k = 1; k < 5; k++)
         bound += fabs(e[k]) * (hk *= h);
-    double star = q[2] > 0 ? -0.5 * q[1] / q[2] : 0.0;
-    double axis2 = q[2] > 0 ? q[0] / q[2] - star * star + (star - 0.5) * (star - 0.5) : INFINITY;
-    return !(fabs(e[0]) > (1.0 + 1e-12) * bound) || axis2 < h * h;
+    return !(fabs(e[0]) > (1.0 + 1e-12) * bound);
 }
 
 int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, double r,
@@ -230,10 +233,26 @@ int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, d
     const double *xs, *wsg;
     int rule = dep_ring_rule(wt, len, &xs, &wsg);
     double h = rule == 4 ? 4.0 : (rule == 8 ? 1.5 : 1.0), lo = 0.5 - h, hi = 0.5 + h;
+    /* the distance from the ring, sqrt((rho - r)^2 + dz^2), changes by at most the distance
+     * along the branch: beyond the reach plus half the branch's length at its middle, all of
+     * the branch is outside the support */
+    double xm = br->a[0] + 0.5 * b[0], ym = br->a[1] + 0.5 * b[1];
+    double dzm = z - br->a[2] - 0.5 * b[2], drm = sqrt(xm * xm + ym * ym) - r;
+    double out = sqrt(wt->reach2) + 0.5 * len, dm2 = drm * drm + dzm * dzm;
+    if (dm2 >= out * out)
+        return 0;
     if (!quartic_at(br, r, z, wt->reach2, c))
         return -1;
-    if (!near_disc(c, q, h))
-        return -1;
+    double e[5];
+    about_middle(c, e);
+    double star = q[2] > 0 ? -0.5 * q[1] / q[2] : 0.0;
+    double axis2 = q[2] > 0 ? q[0] / q[2] - star * star + (star - 0.5) * (star - 0.5) : INFINITY;
+    if (!root_near(e, h) && !(axis2 < h * h))
+        return -1; /* no singular point near: the axis's too */
+    /* no edge on the branch (Q keeps its sign on it) and the middle outside the support:
+     * all of it is, and the ring has no weight */
+    if (!root_near(e, 0.5) && dm2 >= wt->reach2)
+        return 0;
     sing_pt pt[8];
     int np = singular_points(br, c, lo, hi, pt), n = 0;
     /* the pieces: between the edges and the real parts of the pairs within the branch */
@@ -257,7 +276,7 @@ int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, d
         double dz = z - (br->a[2] + mid * b[2]);
         if (!((r - rho) * (r - rho) + dz * dz < wt->reach2))
             continue; /* a piece outside the support (between edges: all of it) */
-        n = piece_split(br, wt, len, r, z, s0, s1, pt, np, nd, n);
+        n = piece_split(br, wt, len, r, z, s0, s1, pt, np, nc - 2 - p, nd, n);
     }
     for (; n % 8; n++) { /* out of reach, no weight */
         nd->w[n] = nd->rho[n] = nd->dz[n] = 0.0;

@@ -24,7 +24,7 @@ typedef struct mimas_ring_branch {
 
 void mimas_ring_branch_init(mimas_ring_branch *br, const double a[3], const double ab[3]);
 
-/* The nodes of the split rule at one ring: up to 18 pieces of up to 16 nodes, padded to a
+/* The nodes of the split rule at one ring: room for 18 pieces of 16 nodes, padded to a
  * multiple of 8 with nodes out of reach (weight 0, dr2 infinite). */
 #define MIMAS_RING_NODES_MAX 288
 typedef struct mimas_ring_nodes {
