@@ -390,8 +390,8 @@ static double ring_reference(int *edges)
  * within 0.3 mm of it) on an r-z grid of 0.5 mm cells, the plain Gaussian (w = 1 mm) at
  * cutoffs 2 and 3, against the adaptive integral along the branch of the exact azimuthal
  * average, split at its edges: every cell within tol of the peak, also where an edge
- * crosses the branch or nearly touches it, or the branch passes near the axis (1.8e-9 of
- * the peak seen; 2.9e-3 before the rule was split at the edges). */
+ * crosses the branch or nearly touches it, or the branch passes near the axis (1.4e-9 of
+ * the peak seen; with the rule along the whole branch 8.1e-3 at cutoff 2 and 6.2e-4 at 3). */
 static void check_ring_branches(double cut, double tol)
 {
     char spec[64];
