@@ -674,8 +674,8 @@ int dep_ring_rule(const mimas_weight *wt, double len, const double **x, const do
 }
 
 /* The azimuthal average along the segment from a to b (axis frame) at the ring
- * (r, z) by Gauss-Legendre (dep_ring_rule), split where an edge of the average crosses
- * the segment (ring_edges.h; a kernel averaged over z has its edges at |rho -+ r| = R). */
+ * (r, z) by Gauss-Legendre (dep_ring_rule), split at the average's singular points where
+ * one is near (ring_edges.h; a kernel averaged over z has its edges at |rho -+ r| = R). */
 static double ring_segment(const mimas_deposit *dp, double r, double z, const double a[3],
                            const double b[3])
 {

@@ -108,8 +108,9 @@ void mimas_gauss_tables(void);
 
 /* The Gaussian on an r-z grid (dp->gauss_rz): a particle at axis-frame a (its azimuthal
  * average and gradient at the cell centres) and a segment aa -> ab (Gauss-Legendre along
- * it, dep_ring_rule) over the cells within reach of its midpoint am, by the ring series
- * per cell (deposit_ring.c); scale multiplies every weight. */
+ * it, dep_ring_rule, split at the average's singular points where one is near: ring_edges.h)
+ * over the cells within reach of its midpoint am, by the ring series per cell
+ * (deposit_ring.c); scale multiplies every weight. */
 int mimas_gauss_sphere_rz(const mimas_deposit *dp, const double a[3], int with_grad,
                           double scale, mimas_weights *ws);
 int mimas_gauss_segment_rz(const mimas_deposit *dp, const double aa[3], const double ab[3],

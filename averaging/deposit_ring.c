@@ -1,7 +1,8 @@
 /* The plain and shifted Gaussian on r-z grids (cylindrical, no phi cells): the
  * kernel's azimuthal average at each cell centre (r_i, z_j) for a particle, and its
- * Gauss-Legendre line integral along a contact's branch (docs/fields.md, "Cylindrical
- * grids without phi cells").  The average depends on the cell through
+ * Gauss-Legendre line integral along a contact's branch, split at the average's singular
+ * points where one is near (ring_edges.h; docs/fields.md, "Cylindrical grids without phi
+ * cells").  The average depends on the cell through
  * D0^2 = (r_i - rho)^2 + (z_j - z)^2 and r_i rho: the squared offsets are computed once per
  * column and row (per branch point for a segment); the cut arc is
  * mimas_gauss_ring_short's series (no exponential: the table of M_{1/2}) in lanes of
