@@ -17,9 +17,14 @@ void mimas_ring_branch_init(mimas_ring_branch *br, const double a[3], const doub
         br->a[m] = a[m];
         br->b[m] = ab[m] - a[m];
     }
+    const double *b = br->b;
+    br->len = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
     br->q[0] = a[0] * a[0] + a[1] * a[1];
-    br->q[1] = 2.0 * (a[0] * br->b[0] + a[1] * br->b[1]);
-    br->q[2] = br->b[0] * br->b[0] + br->b[1] * br->b[1];
+    br->q[1] = 2.0 * (a[0] * b[0] + a[1] * b[1]);
+    br->q[2] = b[0] * b[0] + b[1] * b[1];
+    br->star = br->q[2] > 0 ? -0.5 * br->q[1] / br->q[2] : 0.0;
+    br->beta = br->q[2] > 0 ? sqrt(fmax(br->q[0] / br->q[2] - br->star * br->star, 0.0))
+                            : INFINITY;
 }
 
 /* the quartic and its derivative at s (Horner) */
@@ -107,13 +112,14 @@ static int piece_nodes(const mimas_ring_branch *br, double r, double z, double s
                        const sing_pt *p, int m, mimas_ring_nodes *nd, int n)
 {
     const double *xs = m == 16 ? gl16_x : gl8_x, *ws = m == 16 ? gl16_w : gl8_w;
-    double u0 = 0.0, u1 = 1.0;
+    double u0 = 0.0, u1 = 1.0, c = 0.0, dir = 1.0; /* the edge's map: s = p + dir c u^2 */
     if (p && p->g > 0) {
         u0 = asinh((s0 - p->s) / p->g);
         u1 = asinh((s1 - p->s) / p->g);
     } else if (p) {
-        double c = p->s <= s0 ? s1 - p->s : p->s - s0;
-        u0 = sqrt((p->s <= s0 ? s0 - p->s : p->s - s1) / c);
+        dir = p->s <= s0 ? 1.0 : -1.0;
+        c = dir > 0 ? s1 - p->s : p->s - s0;
+        u0 = sqrt((dir > 0 ? s0 - p->s : p->s - s1) / c);
     }
     if (u1 - u0 > 2.0)
         xs = gl16_x, ws = gl16_w, m = 16;
@@ -123,7 +129,6 @@ static int piece_nodes(const mimas_ring_branch *br, double r, double z, double s
         if (p && p->g > 0) {
             put_node(br, r, z, p->s + p->g * sinh(u), p->g * cosh(u) * wu, nd, n++);
         } else if (p) {
-            double c = p->s <= s0 ? s1 - p->s : p->s - s0, dir = p->s <= s0 ? 1.0 : -1.0;
             put_node(br, r, z, p->s + dir * c * u * u, 2.0 * c * u * wu, nd, n++);
         } else {
             put_node(br, r, z, s0 + (s1 - s0) * u, (s1 - s0) * wu, nd, n++);
@@ -134,13 +139,13 @@ static int piece_nodes(const mimas_ring_branch *br, double r, double z, double s
 
 /* The rule on [s0, s1] made smooth at the one singular point within its length of it;
  * where there are more, halved, until the halves have one or none (or the room for nodes
- * runs out: then the nearest).  8 points, 16 where the piece is longer than 2 w (len the
- * branch's length) or its map stretches it.  Room: a piece is entered with room for its 16
+ * runs out: then the nearest).  8 points, 16 where the piece is longer than 2 w or its map
+ * stretches it.  Room: a piece is entered with room for its 16
  * and 16 for each of the pending pieces after it, and halved only if there is room for one
  * more: so it never takes theirs. */
-static int piece_split(const mimas_ring_branch *br, const mimas_weight *wt, double len,
-                       double r, double z, double s0, double s1, const sing_pt *pt, int np,
-                       int pending, mimas_ring_nodes *nd, int n)
+static int piece_split(const mimas_ring_branch *br, const mimas_weight *wt, double r,
+                       double z, double s0, double s1, const sing_pt *pt, int np, int pending,
+                       mimas_ring_nodes *nd, int n)
 {
     double ds = s1 - s0, best = ds * ds;
     const sing_pt *p = NULL;
@@ -155,11 +160,11 @@ static int piece_split(const mimas_ring_branch *br, const mimas_weight *wt, doub
         }
     }
     if (near > 1 && n + 16 * (pending + 2) <= MIMAS_RING_NODES_MAX) {
-        n = piece_split(br, wt, len, r, z, s0, s0 + 0.5 * ds, pt, np, pending + 1, nd, n);
-        return piece_split(br, wt, len, r, z, s0 + 0.5 * ds, s1, pt, np, pending, nd, n);
+        n = piece_split(br, wt, r, z, s0, s0 + 0.5 * ds, pt, np, pending + 1, nd, n);
+        return piece_split(br, wt, r, z, s0 + 0.5 * ds, s1, pt, np, pending, nd, n);
     }
     const double *xs, *ws;
-    int m = dep_ring_rule(wt, ds * len, &xs, &ws) == 16 ? 16 : 8;
+    int m = dep_ring_rule(wt, ds * br->len, &xs, &ws) == 16 ? 16 : 8;
     return piece_nodes(br, r, z, s0, s1, p, m, nd, n);
 }
 
@@ -192,13 +197,8 @@ static int singular_points(const mimas_ring_branch *br, const double c[5], doubl
     for (int i = 0; i + 1 < nx; i++)
         if ((f[i] < 0) != (f[i + 1] < 0))
             pt[n++] = (sing_pt){bracketed_root(c, x[i], x[i + 1], f[i], f[i + 1]), 0.0};
-    const double *q = br->q;
-    if (q[2] > 0) {
-        double star = -0.5 * q[1] / q[2];
-        double beta = sqrt(fmax(q[0] / q[2] - star * star, 0.0));
-        if (star >= lo && star <= hi)
-            pt[n++] = (sing_pt){star, beta};
-    }
+    if (br->q[2] > 0 && br->star >= lo && br->star <= hi)
+        pt[n++] = (sing_pt){br->star, br->beta};
     return n;
 }
 
@@ -228,8 +228,8 @@ int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, d
     /* the plain rule (dep_ring_rule, 4 to 16 points) is accurate to 1e-9 of the kernel's
      * peak where no singular point is within a disc about the branch's middle, of radius
      * 4, 1.5 or 1 branch lengths for the rules of 4, 8 and 16 points */
-    const double *b = br->b, *q = br->q;
-    double len = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]), c[5];
+    const double *b = br->b;
+    double len = br->len, c[5];
     const double *xs, *wsg;
     int rule = dep_ring_rule(wt, len, &xs, &wsg);
     double h = rule == 4 ? 4.0 : (rule == 8 ? 1.5 : 1.0), lo = 0.5 - h, hi = 0.5 + h;
@@ -245,8 +245,7 @@ int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, d
         return -1;
     double e[5];
     about_middle(c, e);
-    double star = q[2] > 0 ? -0.5 * q[1] / q[2] : 0.0;
-    double axis2 = q[2] > 0 ? q[0] / q[2] - star * star + (star - 0.5) * (star - 0.5) : INFINITY;
+    double mid_off = br->star - 0.5, axis2 = br->beta * br->beta + mid_off * mid_off;
     if (!root_near(e, h) && !(axis2 < h * h))
         return -1; /* no singular point near: the axis's too */
     /* no edge on the branch (Q keeps its sign on it) and the middle outside the support:
@@ -276,7 +275,7 @@ int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, d
         double dz = z - (br->a[2] + mid * b[2]);
         if (!((r - rho) * (r - rho) + dz * dz < wt->reach2))
             continue; /* a piece outside the support (between edges: all of it) */
-        n = piece_split(br, wt, len, r, z, s0, s1, pt, np, nc - 2 - p, nd, n);
+        n = piece_split(br, wt, r, z, s0, s1, pt, np, nc - 2 - p, nd, n);
     }
     for (; n % 8; n++) { /* out of reach, no weight */
         nd->w[n] = nd->rho[n] = nd->dz[n] = 0.0;

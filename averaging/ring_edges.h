@@ -1,16 +1,17 @@
 /* A kernel's azimuthal average along a contact's branch on an r-z grid: where the
- * average has its edges along the branch, and the quadrature nodes that split the
- * branch there (docs/fields.md, "Cylindrical grids without phi cells").
+ * average is singular along the branch, and the quadrature nodes that split the branch
+ * there (docs/fields.md, "Cylindrical grids without phi cells").
  *
  * The average at the ring (r, z) of the kernel around a point at distance rho from the
  * axis is cut where the ring leaves the kernel's support, (rho - r)^2 + dz^2 = R^2, and
  * where all of it enters, (rho + r)^2 + dz^2 = R^2; at both it goes as the square root of
- * the distance from the edge, which a rule along the whole branch does not integrate to
- * more than about 1e-4 of the kernel's peak.  Along the branch a + s b the two edges are
- * the roots in s of one quartic, (q + r^2 + dz^2 - R^2)^2 = 4 r^2 q with q = |a + s b|^2
- * across the axis; the pieces between them are integrated each with its own rule in
- * u, s = s0 + (s1 - s0) u^2 (3 - 2u), under which the square root at either end is
- * smooth. */
+ * the distance from the edge.  Along the branch a + s b the two edges are the real roots in
+ * s of one quartic, (q + r^2 + dz^2 - R^2)^2 = 4 r^2 q with q = |a + s b|^2 across the axis;
+ * where the branch nearly touches an edge the quartic has a pair of complex roots near it,
+ * and rho = sqrt(q) has branch points off the branch by its nearest approach to the axis.
+ * A rule along the whole branch is off by up to 6e-4 of the kernel's peak there (8e-3 at
+ * cutoff 2); the split rule integrates each piece in a variable that makes the nearest of
+ * these points smooth (u^2 from an edge, sinh(u) about a complex pair). */
 #ifndef MIMAS_RING_EDGES_H
 #define MIMAS_RING_EDGES_H
 
@@ -19,7 +20,11 @@
 /* A branch a -> a + b in the grid's axis frame. */
 typedef struct mimas_ring_branch {
     double a[3], b[3];
+    double len;  /* |b| */
     double q[3]; /* its squared distance from the axis, q[0] + q[1] s + q[2] s^2 */
+    /* its nearest approach to the axis, where rho has its branch points star +- i beta
+     * (beta infinite for a branch along the axis) */
+    double star, beta;
 } mimas_ring_branch;
 
 void mimas_ring_branch_init(mimas_ring_branch *br, const double a[3], const double ab[3]);
@@ -35,9 +40,10 @@ typedef struct mimas_ring_nodes {
     double irr[MIMAS_RING_NODES_MAX]; /* 1/(4 r rho), infinite on the axis */
 } mimas_ring_nodes;
 
-/* The split rule for the branch at the ring (r, z) of wt's average: -1 when no edge
- * crosses the branch (the rule along the whole branch is smooth there), else the number
- * of nodes (0 when every piece is outside the support: the ring has no weight). */
+/* The split rule for the branch at the ring (r, z) of wt's average: -1 when no singular
+ * point is near the branch (the rule along the whole branch, dep_ring_rule, is accurate
+ * there), else the number of nodes (0 when all of the branch is outside the support: the
+ * ring has no weight). */
 int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, double r,
                           double z, mimas_ring_nodes *nd);
 
