@@ -482,10 +482,11 @@ static void test_ring_series(void **state)
 }
 
 /* The line integral along a + s (b - a), s in [0, 1], of the azimuthal average at the ring
- * (r, z): adaptive (GSL's qags) on the pieces between the average's edges, where the ring's
- * nearest or farthest point is at the reach (sign changes on 2048 intervals, then
- * bisection). */
+ * (r, z) (SEG_DIMS 2: of the kernel's marginal over z, z unused): adaptive (GSL's qags) on
+ * the pieces between the average's edges, where the ring's nearest or farthest point is at
+ * the reach (sign changes on 2048 intervals, then bisection). */
 static double SEG_A[3], SEG_B[3], SEG_R, SEG_Z;
+static int SEG_DIMS = 3;
 
 static double seg_rho(double s)
 {
@@ -495,12 +496,13 @@ static double seg_rho(double s)
 static double seg_integrand(double s, void *p)
 {
     (void)p;
-    return ref_ring(3, SEG_R, seg_rho(s), SEG_Z - SEG_A[2] - s * SEG_B[2]);
+    return ref_ring(SEG_DIMS, SEG_R, seg_rho(s), SEG_Z - SEG_A[2] - s * SEG_B[2]);
 }
 
 static double seg_edge(double s, double sign)
 {
-    return hypot(seg_rho(s) + sign * SEG_R, SEG_Z - SEG_A[2] - s * SEG_B[2]) - R_REACH();
+    double dz = SEG_DIMS == 3 ? SEG_Z - SEG_A[2] - s * SEG_B[2] : 0.0;
+    return hypot(seg_rho(s) + sign * SEG_R, dz) - R_REACH();
 }
 
 static int cmp_double(const void *x, const void *y)
@@ -555,13 +557,19 @@ static double ref_ring_segment(const double a[3], const double b[3], double r, d
  * docs/fields.md), here the adaptive integral above of the adaptive average at each point:
  * within 1e-8 of the kernel's peak (far from the axis, near it and across it; the plain and
  * shifted Gaussian, cutoffs 3 and 5, and Lucy). */
-static void check_ring_segments(const char *spec)
+static void check_ring_segments(const char *spec, int dims)
 {
     mimas_weight wt = parse(spec);
     mimas_grid g;
     mimas_error err;
-    assert_int_equal(mimas_grid_parse(&g, "r=0:0.03:30,z=0:0.02:20", NULL, &err), MIMAS_OK);
+    /* dims 2: an r-only grid, the kernel's marginal over z divided by the box's height */
+    assert_int_equal(mimas_grid_parse(&g, dims == 3 ? "r=0:0.03:30,z=0:0.02:20" : "r=0:0.03:30",
+                                      NULL, &err),
+                     MIMAS_OK);
+    SEG_DIMS = dims;
     mimas_box box = {{-0.05, -0.05, -0.01}, {0.05, 0.05, 0.03}, 0, 0, 0, {0, 0, 0}};
+    if (dims == 2)
+        mimas_grid_fit_box(&g, &box); /* z over the box, as average does */
     mimas_deposit dp;
     assert_int_equal(mimas_deposit_init(&dp, &g, &wt, &box, 0, &err), MIMAS_OK);
     /* from, to (mm): far, middle, near and across the axis; 0.4, 1.5 and 3 w long */
@@ -569,7 +577,8 @@ static void check_ring_segments(const char *spec)
                               {4, 3, 10, 5.5, 4.6, 11},   {2, 0.5, 7, 2.3, 0.6, 7.2},
                               {1, 0.3, 9, -0.4, -0.5, 9.8}, {0.5, 0.1, 12, 1.9, -1.3, 13.1},
                               {25, 8, 4, 27.1, 6.2, 4.5}};
-    double peak = ref_phi(0), worst = 0, far = 0;
+    const double origin[2] = {0, 0}, height = 0.04; /* the box's, below */
+    double peak = dims == 3 ? ref_phi(0) : ref_marginal(2, origin), worst = 0, far = 0;
     size_t nc = mimas_grid_cells(&g);
     double *dense = calloc(nc, sizeof *dense);
     mimas_weights ws = {0};
@@ -587,12 +596,12 @@ static void check_ring_segments(const char *spec)
         double len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
                           (b[2] - a[2]) * (b[2] - a[2]));
         for (int i = 0; i < 30; i++)
-            for (int j = 0; j < 20; j++) {
+            for (int j = 0; j < (dims == 3 ? 20 : 1); j++) {
                 double r = (i + 0.5) * 1e-3, z = (j + 0.5) * 1e-3;
                 int idx[3] = {i, 0, j};
-                double got = dense[mimas_grid_index(&g, idx)];
+                double got = dense[mimas_grid_index(&g, idx)] * (dims == 3 ? 1.0 : height);
                 /* out of reach of the whole branch: nothing */
-                if (hypot(hypot(a[0], a[1]) - r, a[2] - z) > R_REACH() + len) {
+                if (hypot(hypot(a[0], a[1]) - r, dims == 3 ? a[2] - z : 0.0) > R_REACH() + len) {
                     assert_true(got == 0.0);
                     continue;
                 }
@@ -606,8 +615,8 @@ static void check_ring_segments(const char *spec)
                     far = fmax(far, e);
             }
     }
-    print_message("# %s: branches on r-z, worst %.2g peak, far from the axis %.2g\n", spec,
-                  worst, far);
+    print_message("# %s: branches on %s, worst %.2g peak, far from the axis %.2g\n", spec,
+                  dims == 3 ? "r-z" : "r", worst, far);
     mimas_weights_free(&ws);
     free(dense);
 }
@@ -616,11 +625,14 @@ static void test_ring_segments(void **state)
 {
     (void)state;
     gsl_set_error_handler_off(); /* the adaptive references near their rounding */
-    check_ring_segments("gauss:w=0.001");
-    check_ring_segments("gauss:w=0.001,shift");
+    check_ring_segments("gauss:w=0.001", 3);
+    check_ring_segments("gauss:w=0.001,shift", 3);
     /* the 16-point rule's long arcs reach 4 mm out */
-    check_ring_segments("gauss:w=0.001,cutoff=5");
-    check_ring_segments("lucy:c=0.003");
+    check_ring_segments("gauss:w=0.001,cutoff=5", 3);
+    check_ring_segments("lucy:c=0.003", 3);
+    /* r-only grids: the marginal's average, whose edges are at |rho -+ r| = R */
+    check_ring_segments("gauss:w=0.001", 2);
+    check_ring_segments("lucy:c=0.003", 2);
 }
 
 /* ---- bins: a branch walked through the cells of a Cartesian grid ---- */
