@@ -684,7 +684,7 @@ static double ring_segment(const mimas_deposit *dp, double r, double z, const do
     double b2[3] = {b[0], b[1], dp->dims == 3 ? b[2] : 0.0};
     mimas_ring_branch br;
     mimas_ring_nodes nd;
-    mimas_ring_branch_init(&br, a2, b2);
+    mimas_ring_branch_init(&br, wt, a2, b2);
     int ne = mimas_ring_edge_nodes(&br, wt, r, dp->dims == 3 ? z : 0.0, &nd);
     double sum = 0.0;
     for (int k = 0; k < ne; k++)

@@ -172,7 +172,7 @@ int RING_SEG_FN(const mimas_deposit *dp, const double aa[3], const double ab[3],
     }
     /* where an edge of the average crosses the branch, the rule split there */
     mimas_ring_branch br;
-    mimas_ring_branch_init(&br, aa, ab);
+    mimas_ring_branch_init(&br, wt, aa, ab);
     mimas_ring_nodes nd;
     int idx[3] = {0, lo[1], 0};
     double norm = wt->coef / M_PI;

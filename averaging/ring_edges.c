@@ -11,7 +11,8 @@
 #include "gauss_legendre.h"
 #include "ring_edges.h"
 
-void mimas_ring_branch_init(mimas_ring_branch *br, const double a[3], const double ab[3])
+void mimas_ring_branch_init(mimas_ring_branch *br, const mimas_weight *wt, const double a[3],
+                            const double ab[3])
 {
     for (int m = 0; m < 3; m++) {
         br->a[m] = a[m];
@@ -25,6 +26,19 @@ void mimas_ring_branch_init(mimas_ring_branch *br, const double a[3], const doub
     br->star = br->q[2] > 0 ? -0.5 * br->q[1] / br->q[2] : 0.0;
     br->beta = br->q[2] > 0 ? sqrt(fmax(br->q[0] / br->q[2] - br->star * br->star, 0.0))
                             : INFINITY;
+    double mx = a[0] + 0.5 * b[0], my = a[1] + 0.5 * b[1];
+    br->qm[0] = mx * mx + my * my;
+    br->qm[1] = 2.0 * (mx * b[0] + my * b[1]);
+    br->rho_mid = sqrt(br->qm[0]);
+    br->z_mid = a[2] + 0.5 * b[2];
+    /* the plain rule (dep_ring_rule, 4 to 16 points) is accurate to 1e-9 of the kernel's
+     * peak where no singular point is within a disc about the branch's middle, of radius
+     * 4, 1.5 or 1 branch lengths for the rules of 4, 8 and 16 points */
+    const double *xs, *ws;
+    int rule = dep_ring_rule(wt, br->len, &xs, &ws);
+    br->h = rule == 4 ? 4.0 : (rule == 8 ? 1.5 : 1.0);
+    double out = sqrt(wt->reach2) + 0.5 * br->len;
+    br->out2 = out * out;
 }
 
 /* the quartic and its derivative at s (Horner) */
@@ -67,33 +81,36 @@ static double bracketed_root(const double c[5], double a, double b, double fa, d
     return x;
 }
 
-/* Q's coefficients at the ring (r, z): P = q + r^2 + dz^2 - R^2 with dz = d0 - bz s,
- * Q = P^2 - 4 r^2 q, negative where the ring is partly inside the support, zero on
- * either edge; 0 for a branch of no length (Q constant). */
-static int quartic_at(const mimas_ring_branch *br, double r, double z, double R2, double c[5])
+/* Q's coefficients about the branch's middle, Q(1/2 + t) = sum e_k t^k, at the ring (r, z):
+ * P = q + r^2 + dz^2 - R^2 with dz = dzm - bz t, Q = P^2 - 4 r^2 q, negative where the ring
+ * is partly inside the support, zero on either edge; 0 for a branch of no length (Q
+ * constant). */
+static int quartic_mid(const mimas_ring_branch *br, double r, double z, double R2, double e[5])
 {
-    const double *q = br->q;
-    double d0 = z - br->a[2], bz = br->b[2], r2 = r * r;
-    double p0 = q[0] + r2 + d0 * d0 - R2, p1 = q[1] - 2.0 * d0 * bz, p2 = q[2] + bz * bz;
-    c[0] = p0 * p0 - 4.0 * r2 * q[0];
-    c[1] = 2.0 * p0 * p1 - 4.0 * r2 * q[1];
-    c[2] = p1 * p1 + 2.0 * p0 * p2 - 4.0 * r2 * q[2];
-    c[3] = 2.0 * p1 * p2;
-    c[4] = p2 * p2;
+    const double *qm = br->qm;
+    double q2 = br->q[2], dzm = z - br->z_mid, bz = br->b[2], r2 = r * r;
+    double p0 = qm[0] + r2 + dzm * dzm - R2, p1 = qm[1] - 2.0 * dzm * bz, p2 = q2 + bz * bz;
+    e[0] = p0 * p0 - 4.0 * r2 * qm[0];
+    e[1] = 2.0 * p0 * p1 - 4.0 * r2 * qm[1];
+    e[2] = p1 * p1 + 2.0 * p0 * p2 - 4.0 * r2 * q2;
+    e[3] = 2.0 * p1 * p2;
+    e[4] = p2 * p2;
     return p2 > 0;
 }
 
-/* a node at s of weight w */
-static void put_node(const mimas_ring_branch *br, double r, double z, double s, double w,
-                     mimas_ring_nodes *nd, int k)
+/* m nodes at s of weights w, from the n-th on */
+static void put_nodes(const mimas_ring_branch *br, double r, double z, const double *s,
+                      const double *w, int m, mimas_ring_nodes *nd, int n)
 {
-    double p0 = br->a[0] + s * br->b[0], p1 = br->a[1] + s * br->b[1];
-    double rho = sqrt(p0 * p0 + p1 * p1), rr = 4.0 * r * rho;
-    nd->w[k] = w;
-    nd->rho[k] = rho;
-    nd->dz[k] = z - (br->a[2] + s * br->b[2]);
-    nd->dr2[k] = (r - rho) * (r - rho);
-    nd->irr[k] = rr > 0 ? 1.0 / rr : INFINITY;
+    for (int k = 0; k < m; k++) {
+        double p0 = br->a[0] + s[k] * br->b[0], p1 = br->a[1] + s[k] * br->b[1];
+        double rho = sqrt(p0 * p0 + p1 * p1), rr = 4.0 * r * rho;
+        nd->w[n + k] = w[k];
+        nd->rho[n + k] = rho;
+        nd->dz[n + k] = z - (br->a[2] + s[k] * br->b[2]);
+        nd->dr2[n + k] = (r - rho) * (r - rho);
+        nd->irr[n + k] = rr > 0 ? 1.0 / rr : INFINITY;
+    }
 }
 
 /* A singular point of the average along the branch: an edge (g = 0) at s, or a pair
@@ -123,18 +140,23 @@ static int piece_nodes(const mimas_ring_branch *br, double r, double z, double s
     }
     if (u1 - u0 > 2.0)
         xs = gl16_x, ws = gl16_w, m = 16;
+    double sn[16], wn[16];
     for (int i = 0; i < m; i++) {
         double u, wu;
         gl_node(xs, ws, m, i, u0, u1, &u, &wu);
         if (p && p->g > 0) {
-            put_node(br, r, z, p->s + p->g * sinh(u), p->g * cosh(u) * wu, nd, n++);
+            sn[i] = p->s + p->g * sinh(u);
+            wn[i] = p->g * cosh(u) * wu;
         } else if (p) {
-            put_node(br, r, z, p->s + dir * c * u * u, 2.0 * c * u * wu, nd, n++);
+            sn[i] = p->s + dir * c * u * u;
+            wn[i] = 2.0 * c * u * wu;
         } else {
-            put_node(br, r, z, s0 + (s1 - s0) * u, (s1 - s0) * wu, nd, n++);
+            sn[i] = s0 + (s1 - s0) * u;
+            wn[i] = (s1 - s0) * wu;
         }
     }
-    return n;
+    put_nodes(br, r, z, sn, wn, m, nd, n);
+    return n + m;
 }
 
 /* The rule on [s0, s1] made smooth at the one singular point within its length of it;
@@ -168,17 +190,29 @@ static int piece_split(const mimas_ring_branch *br, const mimas_weight *wt, doub
     return piece_nodes(br, r, z, s0, s1, p, m, nd, n);
 }
 
+/* v[0..n-1] in ascending order (insertion: a few values) */
+static void sort_few(double *v, int n)
+{
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && v[j] < v[j - 1]; j--) {
+            double tmp = v[j];
+            v[j] = v[j - 1];
+            v[j - 1] = tmp;
+        }
+}
+
 /* The singular points within reach of the branch (real parts in [lo, hi]): Q's real roots,
- * bracketed by its turning points (the roots of the cubic Q', GSL's solver), the complex
- * pairs where it turns without reaching zero (g from Q's parabola there), and the nearest
- * approach to the axis. */
+ * bracketed by its turning points (the roots of the cubic Q', GSL's solver, unless turns is
+ * 0: Q monotone on [lo, hi]), the complex pairs where it turns without reaching zero (g from
+ * Q's parabola there), and the nearest approach to the axis. */
 static int singular_points(const mimas_ring_branch *br, const double c[5], double lo,
-                           double hi, sing_pt *pt)
+                           double hi, int turns, sing_pt *pt)
 {
     /* Q' = 4 c4 s^3 + 3 c3 s^2 + 2 c2 s + c1: its real roots, ascending, are where Q turns */
     double t[3], x[5], f[5], d;
-    int nt = gsl_poly_solve_cubic(0.75 * c[3] / c[4], 0.5 * c[2] / c[4], 0.25 * c[1] / c[4],
-                                  &t[0], &t[1], &t[2]);
+    int nt = turns ? gsl_poly_solve_cubic(0.75 * c[3] / c[4], 0.5 * c[2] / c[4],
+                                          0.25 * c[1] / c[4], &t[0], &t[1], &t[2])
+                   : 0;
     int nx = 0, n = 0;
     x[nx++] = lo;
     for (int i = 0; i < nt; i++) {
@@ -202,14 +236,14 @@ static int singular_points(const mimas_ring_branch *br, const double c[5], doubl
     return n;
 }
 
-/* e: the coefficients of Q(1/2 + t). */
-static void about_middle(const double c[5], double e[5])
+/* c: the coefficients of Q(s) = Q(1/2 + t) from e, those in t */
+static void about_start(const double e[5], double c[5])
 {
     for (int k = 0; k < 5; k++)
-        e[k] = c[k];
+        c[k] = e[k];
     for (int i = 0; i < 4; i++)
         for (int j = 3; j >= i; j--)
-            e[j] += 0.5 * e[j + 1];
+            c[j] -= 0.5 * c[j + 1];
 }
 
 /* Whether Q may have a root within h of the branch's middle: not where |Q(1/2)| exceeds
@@ -222,29 +256,26 @@ static int root_near(const double e[5], double h)
     return !(fabs(e[0]) > (1.0 + 1e-12) * bound);
 }
 
+/* Whether Q may turn within h of the branch's middle: not where |Q'(1/2)| exceeds
+ * sum_k k |e_k| h^(k-1), which bounds |Q'(1/2 + t) - Q'(1/2)| for |t| <= h. */
+static int turn_near(const double e[5], double h)
+{
+    double bound = h * (2.0 * fabs(e[2]) + h * (3.0 * fabs(e[3]) + h * 4.0 * fabs(e[4])));
+    return !(fabs(e[1]) > (1.0 + 1e-12) * bound);
+}
+
 int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, double r,
                           double z, mimas_ring_nodes *nd)
 {
-    /* the plain rule (dep_ring_rule, 4 to 16 points) is accurate to 1e-9 of the kernel's
-     * peak where no singular point is within a disc about the branch's middle, of radius
-     * 4, 1.5 or 1 branch lengths for the rules of 4, 8 and 16 points */
-    const double *b = br->b;
-    double len = br->len, c[5];
-    const double *xs, *wsg;
-    int rule = dep_ring_rule(wt, len, &xs, &wsg);
-    double h = rule == 4 ? 4.0 : (rule == 8 ? 1.5 : 1.0), lo = 0.5 - h, hi = 0.5 + h;
+    double h = br->h, lo = 0.5 - h, hi = 0.5 + h, c[5], e[5];
     /* the distance from the ring, sqrt((rho - r)^2 + dz^2), changes by at most the distance
      * along the branch: beyond the reach plus half the branch's length at its middle, all of
      * the branch is outside the support */
-    double xm = br->a[0] + 0.5 * b[0], ym = br->a[1] + 0.5 * b[1];
-    double dzm = z - br->a[2] - 0.5 * b[2], drm = sqrt(xm * xm + ym * ym) - r;
-    double out = sqrt(wt->reach2) + 0.5 * len, dm2 = drm * drm + dzm * dzm;
-    if (dm2 >= out * out)
+    double dzm = z - br->z_mid, drm = br->rho_mid - r, dm2 = drm * drm + dzm * dzm;
+    if (dm2 >= br->out2)
         return 0;
-    if (!quartic_at(br, r, z, wt->reach2, c))
+    if (!quartic_mid(br, r, z, wt->reach2, e))
         return -1;
-    double e[5];
-    about_middle(c, e);
     double mid_off = br->star - 0.5, axis2 = br->beta * br->beta + mid_off * mid_off;
     if (!root_near(e, h) && !(axis2 < h * h))
         return -1; /* no singular point near: the axis's too */
@@ -252,8 +283,9 @@ int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, d
      * all of it is, and the ring has no weight */
     if (!root_near(e, 0.5) && dm2 >= wt->reach2)
         return 0;
+    about_start(e, c);
     sing_pt pt[8];
-    int np = singular_points(br, c, lo, hi, pt), n = 0;
+    int np = singular_points(br, c, lo, hi, turn_near(e, h), pt), n = 0;
     /* the pieces: between the edges and the real parts of the pairs within the branch */
     double cut[10] = {0.0};
     int nc = 1;
@@ -261,18 +293,13 @@ int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, d
         if (pt[i].s > 0.0 && pt[i].s < 1.0)
             cut[nc++] = pt[i].s;
     cut[nc++] = 1.0;
-    for (int i = 2; i < nc - 1; i++) /* ascending (few) */
-        for (int j = i; j > 1 && cut[j] < cut[j - 1]; j--) {
-            double tmp = cut[j];
-            cut[j] = cut[j - 1];
-            cut[j - 1] = tmp;
-        }
+    sort_few(cut + 1, nc - 2);
     for (int p = 0; p + 1 < nc; p++) {
         double s0 = cut[p], s1 = cut[p + 1], ds = s1 - s0, mid = s0 + 0.5 * ds;
         if (!(ds > 0))
             continue;
-        double x = br->a[0] + mid * b[0], y = br->a[1] + mid * b[1], rho = sqrt(x * x + y * y);
-        double dz = z - (br->a[2] + mid * b[2]);
+        double x = br->a[0] + mid * br->b[0], y = br->a[1] + mid * br->b[1];
+        double rho = sqrt(x * x + y * y), dz = z - (br->a[2] + mid * br->b[2]);
         if (!((r - rho) * (r - rho) + dz * dz < wt->reach2))
             continue; /* a piece outside the support (between edges: all of it) */
         n = piece_split(br, wt, r, z, s0, s1, pt, np, nc - 2 - p, nd, n);

@@ -25,9 +25,17 @@ typedef struct mimas_ring_branch {
     /* its nearest approach to the axis, where rho has its branch points star +- i beta
      * (beta infinite for a branch along the axis) */
     double star, beta;
+    /* its middle: distance from the axis, z, and q about it, qm[0] + qm[1] t + q[2] t^2 with
+     * t = s - 1/2 */
+    double rho_mid, z_mid, qm[2];
+    /* the radius of the disc about the middle, in branch lengths, where a singular point
+     * asks for the split rule; the square of the reach plus half the length */
+    double h, out2;
 } mimas_ring_branch;
 
-void mimas_ring_branch_init(mimas_ring_branch *br, const double a[3], const double ab[3]);
+/* The branch a -> ab for the weight wt. */
+void mimas_ring_branch_init(mimas_ring_branch *br, const mimas_weight *wt, const double a[3],
+                            const double ab[3]);
 
 /* The nodes of the split rule at one ring: room for 18 pieces of 16 nodes, padded to a
  * multiple of 8 with nodes out of reach (weight 0, dr2 infinite). */
