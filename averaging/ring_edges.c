@@ -205,29 +205,37 @@ static void sort_few(double *v, int n)
  * bracketed by its turning points (the roots of the cubic Q', GSL's solver, unless turns is
  * 0: Q monotone on [lo, hi]), the complex pairs where it turns without reaching zero (g from
  * Q's parabola there), and the nearest approach to the axis. */
-static int singular_points(const mimas_ring_branch *br, const double c[5], double lo,
-                           double hi, int turns, sing_pt *pt)
+static int singular_points(const mimas_ring_branch *br, const double c[5], double q_mid,
+                           double lo, double hi, int turns, sing_pt *pt)
 {
     /* Q' = 4 c4 s^3 + 3 c3 s^2 + 2 c2 s + c1: its real roots, ascending, are where Q turns */
-    double t[3], x[5], f[5], d;
+    double t[3], x[6], f[6], d;
     int nt = turns ? gsl_poly_solve_cubic(0.75 * c[3] / c[4], 0.5 * c[2] / c[4],
                                           0.25 * c[1] / c[4], &t[0], &t[1], &t[2])
                    : 0;
-    int nx = 0, n = 0;
-    x[nx++] = lo;
+    /* the points between which Q is monotone, ascending, with Q there: the ends of
+     * [lo, hi], the turning points, and the middle, where Q is known (q_mid), which
+     * narrows the brackets of the roots */
+    int nx = 0, n = 0, mid = 0;
+    x[nx] = lo;
+    f[nx++] = quartic(c, lo, &d);
     for (int i = 0; i < nt; i++) {
         double v = quartic(c, t[i], &d);
         double curv = 2.0 * c[2] + t[i] * (6.0 * c[3] + 12.0 * c[4] * t[i]); /* Q'' */
         if (!(t[i] > lo && t[i] < hi))
             continue;
-        x[nx++] = t[i];
+        if (!mid && t[i] >= 0.5)
+            x[nx] = 0.5, f[nx++] = q_mid, mid = 1;
+        x[nx] = t[i];
+        f[nx++] = v;
         if (v * curv > 0) /* a minimum above zero or a maximum below: a pair */
             pt[n++] = (sing_pt){t[i], sqrt(2.0 * v / curv)};
     }
-    x[nx++] = hi;
-    /* between turning points Q is monotone: a root where it changes sign */
-    for (int i = 0; i < nx; i++)
-        f[i] = quartic(c, x[i], &d);
+    if (!mid)
+        x[nx] = 0.5, f[nx++] = q_mid;
+    x[nx] = hi;
+    f[nx++] = quartic(c, hi, &d);
+    /* a root where Q changes sign */
     for (int i = 0; i + 1 < nx; i++)
         if ((f[i] < 0) != (f[i + 1] < 0))
             pt[n++] = (sing_pt){bracketed_root(c, x[i], x[i + 1], f[i], f[i + 1]), 0.0};
@@ -285,7 +293,7 @@ int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, d
         return 0;
     about_start(e, c);
     sing_pt pt[8];
-    int np = singular_points(br, c, lo, hi, turn_near(e, h), pt), n = 0;
+    int np = singular_points(br, c, e[0], lo, hi, turn_near(e, h), pt), n = 0;
     /* the pieces: between the edges and the real parts of the pairs within the branch */
     double cut[10] = {0.0};
     int nc = 1;
