@@ -98,18 +98,23 @@ static int quartic_mid(const mimas_ring_branch *br, double r, double z, double R
     return p2 > 0;
 }
 
-/* m nodes at s of weights w, from the n-th on */
-static void put_nodes(const mimas_ring_branch *br, double r, double z, const double *s,
-                      const double *w, int m, mimas_ring_nodes *nd, int n)
+/* the m nodes from the n-th on at s: their distance from the axis, z offset, (r - rho)^2
+ * and 1/(4 r rho) (infinite on the axis: r, rho >= 0); a loop without branches, which the
+ * compiler vectorizes */
+static void put_nodes(const mimas_ring_branch *br, double r, double z, const double *s, int m,
+                      mimas_ring_nodes *nd, int n)
 {
+    double a0 = br->a[0], a1 = br->a[1], a2 = br->a[2];
+    double b0 = br->b[0], b1 = br->b[1], b2 = br->b[2];
+    double *restrict rhos = nd->rho + n, *restrict dz = nd->dz + n;
+    double *restrict dr2 = nd->dr2 + n, *restrict irr = nd->irr + n;
     for (int k = 0; k < m; k++) {
-        double p0 = br->a[0] + s[k] * br->b[0], p1 = br->a[1] + s[k] * br->b[1];
-        double rho = sqrt(p0 * p0 + p1 * p1), rr = 4.0 * r * rho;
-        nd->w[n + k] = w[k];
-        nd->rho[n + k] = rho;
-        nd->dz[n + k] = z - (br->a[2] + s[k] * br->b[2]);
-        nd->dr2[n + k] = (r - rho) * (r - rho);
-        nd->irr[n + k] = rr > 0 ? 1.0 / rr : INFINITY;
+        double p0 = a0 + s[k] * b0, p1 = a1 + s[k] * b1;
+        double rho = sqrt(p0 * p0 + p1 * p1);
+        rhos[k] = rho;
+        dz[k] = z - (a2 + s[k] * b2);
+        dr2[k] = (r - rho) * (r - rho);
+        irr[k] = 1.0 / (4.0 * r * rho);
     }
 }
 
@@ -140,7 +145,7 @@ static int piece_nodes(const mimas_ring_branch *br, double r, double z, double s
     }
     if (u1 - u0 > 2.0)
         xs = gl16_x, ws = gl16_w, m = 16;
-    double sn[16], wn[16];
+    double sn[16], *wn = nd->w + n;
     for (int i = 0; i < m; i++) {
         double u, wu;
         gl_node(xs, ws, m, i, u0, u1, &u, &wu);
@@ -155,7 +160,7 @@ static int piece_nodes(const mimas_ring_branch *br, double r, double z, double s
             wn[i] = (s1 - s0) * wu;
         }
     }
-    put_nodes(br, r, z, sn, wn, m, nd, n);
+    put_nodes(br, r, z, sn, m, nd, n);
     return n + m;
 }
 
