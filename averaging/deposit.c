@@ -664,10 +664,15 @@ int mimas_deposit_sphere(const mimas_deposit *dp, const double x[3], double R, i
 
 /* ---- segments ------------------------------------------------------------------------ */
 
-int dep_ring_rule(const mimas_weight *wt, double len, const double **x, const double **w)
+double dep_ring_longest(const mimas_weight *wt, int n)
 {
     double scale = wt->kind == MIMAS_WEIGHT_LUCY ? wt->w / 3.0 : wt->w;
-    int n = len <= 0.5 * scale ? 4 : (len <= 2.0 * scale ? 8 : 16);
+    return n == 4 ? 0.5 * scale : (n == 8 ? 2.0 * scale : INFINITY);
+}
+
+int dep_ring_rule(const mimas_weight *wt, double len, const double **x, const double **w)
+{
+    int n = len <= dep_ring_longest(wt, 4) ? 4 : (len <= dep_ring_longest(wt, 8) ? 8 : 16);
     *x = n == 4 ? gl4_x : (n == 8 ? gl8_x : gl16_x);
     *w = n == 4 ? gl4_w : (n == 8 ? gl8_w : gl16_w);
     return n;

@@ -134,13 +134,15 @@ int mimas_gauss_sphere_rz_avx2(const mimas_deposit *dp, const double a[3], int w
                                double scale, mimas_weights *ws);
 int mimas_gauss_sphere_rz_avx512(const mimas_deposit *dp, const double a[3], int with_grad,
                                  double scale, mimas_weights *ws);
-/* The Gauss-Legendre rule along a segment of length len for the azimuthal average: 4, 8
- * or 16 points for segments up to w/2, 2w or longer (the kernel varies on the scale w;
- * Lucy's on c/3).  Returns n and sets its nodes and weights (gauss_legendre.h). */
 /* Bins on a Cartesian grid: the segment a-b walked through the cells, each piece's
  * length fraction over the cell volume (deposit_walk.c). */
 int dep_walk_segment(const mimas_deposit *dp, const double a[3], const double b[3],
                      mimas_weights *ws);
+/* The Gauss-Legendre rule along a segment of length len for the azimuthal average: 4, 8
+ * or 16 points for segments up to w/2, 2w or longer (the kernel varies on the scale w;
+ * Lucy's on c/3).  Returns n and sets its nodes and weights (gauss_legendre.h). */
 int dep_ring_rule(const mimas_weight *wt, double len, const double **x, const double **w);
+/* The longest segment the rule of n points takes (infinite for 16). */
+double dep_ring_longest(const mimas_weight *wt, int n);
 
 #endif

@@ -37,6 +37,7 @@ void mimas_ring_branch_init(mimas_ring_branch *br, const mimas_weight *wt, const
     const double *xs, *ws;
     int rule = dep_ring_rule(wt, br->len, &xs, &ws);
     br->h = rule == 4 ? 4.0 : (rule == 8 ? 1.5 : 1.0);
+    br->len8 = dep_ring_longest(wt, 8);
     double out = sqrt(wt->reach2) + 0.5 * br->len;
     br->out2 = out * out;
 }
@@ -145,19 +146,25 @@ static int piece_nodes(const mimas_ring_branch *br, double r, double z, double s
     }
     if (u1 - u0 > 2.0)
         xs = gl16_x, ws = gl16_w, m = 16;
-    double sn[16], *wn = nd->w + n;
-    for (int i = 0; i < m; i++) {
-        double u, wu;
-        gl_node(xs, ws, m, i, u0, u1, &u, &wu);
-        if (p && p->g > 0) {
+    double sn[16], *wn = nd->w + n; /* u and its weight, then s and its */
+    for (int i = 0; i < m; i++)
+        gl_node(xs, ws, m, i, u0, u1, &sn[i], &wn[i]);
+    if (p && p->g > 0) {
+        for (int i = 0; i < m; i++) {
+            double u = sn[i];
             sn[i] = p->s + p->g * sinh(u);
-            wn[i] = p->g * cosh(u) * wu;
-        } else if (p) {
+            wn[i] *= p->g * cosh(u);
+        }
+    } else if (p) {
+        for (int i = 0; i < m; i++) {
+            double u = sn[i];
             sn[i] = p->s + dir * c * u * u;
-            wn[i] = 2.0 * c * u * wu;
-        } else {
-            sn[i] = s0 + (s1 - s0) * u;
-            wn[i] = (s1 - s0) * wu;
+            wn[i] *= 2.0 * c * u;
+        }
+    } else {
+        for (int i = 0; i < m; i++) {
+            sn[i] = s0 + (s1 - s0) * sn[i];
+            wn[i] *= s1 - s0;
         }
     }
     put_nodes(br, r, z, sn, m, nd, n);
@@ -170,9 +177,8 @@ static int piece_nodes(const mimas_ring_branch *br, double r, double z, double s
  * stretches it.  Room: a piece is entered with room for its 16
  * and 16 for each of the pending pieces after it, and halved only if there is room for one
  * more: so it never takes theirs. */
-static int piece_split(const mimas_ring_branch *br, const mimas_weight *wt, double r,
-                       double z, double s0, double s1, const sing_pt *pt, int np, int pending,
-                       mimas_ring_nodes *nd, int n)
+static int piece_split(const mimas_ring_branch *br, double r, double z, double s0, double s1,
+                       const sing_pt *pt, int np, int pending, mimas_ring_nodes *nd, int n)
 {
     double ds = s1 - s0, best = ds * ds;
     const sing_pt *p = NULL;
@@ -187,11 +193,10 @@ static int piece_split(const mimas_ring_branch *br, const mimas_weight *wt, doub
         }
     }
     if (near > 1 && n + 16 * (pending + 2) <= MIMAS_RING_NODES_MAX) {
-        n = piece_split(br, wt, r, z, s0, s0 + 0.5 * ds, pt, np, pending + 1, nd, n);
-        return piece_split(br, wt, r, z, s0 + 0.5 * ds, s1, pt, np, pending, nd, n);
+        n = piece_split(br, r, z, s0, s0 + 0.5 * ds, pt, np, pending + 1, nd, n);
+        return piece_split(br, r, z, s0 + 0.5 * ds, s1, pt, np, pending, nd, n);
     }
-    const double *xs, *ws;
-    int m = dep_ring_rule(wt, ds * br->len, &xs, &ws) == 16 ? 16 : 8;
+    int m = ds * br->len <= br->len8 ? 8 : 16; /* dep_ring_rule's, 4 points taking 8 */
     return piece_nodes(br, r, z, s0, s1, p, m, nd, n);
 }
 
@@ -263,9 +268,7 @@ static void about_start(const double e[5], double c[5])
  * sum_k |e_k| h^k, which bounds |Q(1/2 + t) - Q(1/2)| on the complex disc |t| <= h. */
 static int root_near(const double e[5], double h)
 {
-    double hk = 1.0, bound = 0.0;
-    for (int k = 1; k < 5; k++)
-        bound += fabs(e[k]) * (hk *= h);
+    double bound = h * (fabs(e[1]) + h * (fabs(e[2]) + h * (fabs(e[3]) + h * fabs(e[4]))));
     return !(fabs(e[0]) > (1.0 + 1e-12) * bound);
 }
 
@@ -315,7 +318,7 @@ int mimas_ring_edge_nodes(const mimas_ring_branch *br, const mimas_weight *wt, d
         double rho = sqrt(x * x + y * y), dz = z - (br->a[2] + mid * br->b[2]);
         if (!((r - rho) * (r - rho) + dz * dz < wt->reach2))
             continue; /* a piece outside the support (between edges: all of it) */
-        n = piece_split(br, wt, r, z, s0, s1, pt, np, nc - 2 - p, nd, n);
+        n = piece_split(br, r, z, s0, s1, pt, np, nc - 2 - p, nd, n);
     }
     for (; n % 8; n++) { /* out of reach, no weight */
         nd->w[n] = nd->rho[n] = nd->dz[n] = 0.0;

@@ -31,6 +31,7 @@ typedef struct mimas_ring_branch {
     /* the radius of the disc about the middle, in branch lengths, where a singular point
      * asks for the split rule; the square of the reach plus half the length */
     double h, out2;
+    double len8; /* the longest piece the rule of 8 points takes (dep_ring_longest) */
 } mimas_ring_branch;
 
 /* The branch a -> ab for the weight wt. */
