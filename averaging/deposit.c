@@ -217,9 +217,27 @@ static int image_range(const mimas_deposit *dp, const mimas_box *box, const doub
     return MIMAS_OK;
 }
 
+/* A direction not in the grid spans the box's extent along it, which mimas_grid_fit_box
+ * set: an unfitted grid has none (and its weights would be infinite). */
+static int extent_defined(const mimas_grid *g, int d, mimas_error *err)
+{
+    double extent = g->hi[d] - g->lo[d];
+    if (extent > 0 && isfinite(extent))
+        return MIMAS_OK;
+    return mimas_error_set(err, MIMAS_EUSAGE,
+                           "the grid's %s (not gridded) spans %g to %g, no extent: fit the "
+                           "grid to the box first (mimas_grid_fit_box)",
+                           mimas_grid_coord_name(g, d), g->lo[d], g->hi[d]);
+}
+
 int mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,
                        const mimas_box *box, int grid_none, mimas_error *err)
 {
+    if (!grid_none)
+        for (int d = 0; d < 3; d++)
+            if (!g->gridded[d] && (g->kind == MIMAS_GRID_CARTESIAN || d == 2) &&
+                extent_defined(g, d, err))
+                return MIMAS_EUSAGE;
     memset(dp, 0, sizeof *dp);
     dp->grid = g;
     dp->wt = wt;

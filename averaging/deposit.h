@@ -63,8 +63,9 @@ typedef struct mimas_deposit {
 
 /* MIMAS_EUSAGE (in err) when the images a kernel reaches lie more than MIMAS_IMAGE_RANGE
  * widths of a periodic box away (a field that would average over so many images of each
- * particle), or when the kernel is integrated along a direction whose periodic edge a tilt
- * turns into a resolved one (docs/fields.md). */
+ * particle), when the kernel is integrated along a direction whose periodic edge a tilt
+ * turns into a resolved one (docs/fields.md), or when a direction not gridded has no extent
+ * (a grid not fitted to the box: mimas_grid_fit_box). */
 int mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weight *wt,
                        const mimas_box *box, int grid_none, mimas_error *err);
 /* A sphere of radius R at x (R = 0: a point); with_grad: kernels also give

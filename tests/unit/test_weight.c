@@ -568,9 +568,12 @@ static void check_ring_segments(const char *spec, int dims)
                      MIMAS_OK);
     SEG_DIMS = dims;
     mimas_box box = {{-0.05, -0.05, -0.01}, {0.05, 0.05, 0.03}, 0, 0, 0, {0, 0, 0}};
-    if (dims == 2)
-        mimas_grid_fit_box(&g, &box); /* z over the box, as average does */
     mimas_deposit dp;
+    if (dims == 2) { /* z over the box, as average does; refused before (no height) */
+        assert_int_equal(mimas_deposit_init(&dp, &g, &wt, &box, 0, &err), MIMAS_EUSAGE);
+        assert_non_null(strstr(err.msg, "the grid's z (not gridded) spans 0 to 0, no extent"));
+        mimas_grid_fit_box(&g, &box);
+    }
     assert_int_equal(mimas_deposit_init(&dp, &g, &wt, &box, 0, &err), MIMAS_OK);
     /* from, to (mm): far, middle, near and across the axis; 0.4, 1.5 and 3 w long */
     const double seg[7][6] = {{20, 3, 9, 20.3, 3.2, 9.1},  {15, 14, 8, 16.1, 14.2, 8.7},
