@@ -714,9 +714,11 @@ static double ring_segment(const mimas_deposit *dp, double r, double z, const do
         sum += nd.w[k] * mimas_kernel_ring(wt, dp->dims, r, nd.rho[k], nd.dz[k], NULL);
     if (ne >= 0)
         return sum;
-    const double *xs, *wsg;
-    double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    int n = dep_ring_rule(wt, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), &xs, &wsg);
+    /* no singular point near: the rule along the whole branch, the one whose reach the
+     * split's test assumed (for a kernel averaged over z, that of the branch's projection,
+     * along which the marginal varies) */
+    const double *xs, *wsg, *d = br.b;
+    int n = dep_ring_rule(wt, br.len, &xs, &wsg);
     for (int k = 0; k < n; k++) {
         double t, wgt;
         gl_node(xs, wsg, n, k, 0.0, 1.0, &t, &wgt);

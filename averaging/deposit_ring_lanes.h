@@ -129,9 +129,12 @@ int RING_SEG_FN(const mimas_deposit *dp, const double aa[3], const double ab[3],
                 double reach, double scale, mimas_weights *ws)
 {
     const mimas_weight *wt = dp->wt;
-    double b[3] = {ab[0] - aa[0], ab[1] - aa[1], ab[2] - aa[2]};
-    const double *xs, *wsg;
-    int n = dep_ring_rule(wt, sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]), &xs, &wsg);
+    /* the branch: its rule along the whole of it and, where an edge of the average is near,
+     * the rule split there (ring_edges.h) */
+    mimas_ring_branch br;
+    mimas_ring_branch_init(&br, wt, aa, ab);
+    const double *b = br.b, *xs, *wsg;
+    int n = dep_ring_rule(wt, br.len, &xs, &wsg);
 #ifdef RING_NARROW
     if (n % RING_W)
         return RING_NARROW(dp, aa, ab, am, reach, scale, ws);
@@ -170,9 +173,6 @@ int RING_SEG_FN(const mimas_deposit *dp, const double aa[3], const double ab[3],
         for (int q = 0; q < n; q++)
             dz[j * n + q] = zc[j] - zq[q];
     }
-    /* where an edge of the average crosses the branch, the rule split there */
-    mimas_ring_branch br;
-    mimas_ring_branch_init(&br, wt, aa, ab);
     mimas_ring_nodes nd;
     int idx[3] = {0, lo[1], 0};
     double norm = wt->coef / M_PI;
