@@ -23,13 +23,13 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_rng.h>
-#include <gsl/gsl_roots.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "deposit.h"
+#include "ring_branch_ref.h"
 #include "weight.h"
 
 /* ---- the reference: the 3-D kernel, its marginals and line integrals, by GSL ---- */
@@ -332,58 +332,19 @@ static double ring_along(double s, void *p)
 
 /* The distance of the branch's point s from the ring's nearest (sign -1: the support's
  * edge) or farthest point (+1: the arc's end, the whole ring inside), minus the reach */
-static double ring_edge(double s, void *p)
+static double ring_edge(double s, double sign, void *p)
 {
-    double sign = *(const double *)p;
+    (void)p;
     double rho = hypot(RING_A[0] + s * RING_B[0], RING_A[1] + s * RING_B[1]);
     return hypot(rho + sign * RING_CR, RING_CZ - RING_A[2] - s * RING_B[2]) - reach();
 }
 
-static int cmp_double(const void *x, const void *y)
-{
-    double a = *(const double *)x, b = *(const double *)y;
-    return (a > b) - (a < b);
-}
-
 /* The adaptive integral along the branch of the exact average, split where either edge
- * crosses it (sign changes on 4096 intervals, then Brent's method: independent of
- * mimas's quartic); *edges their number. */
+ * crosses it (ring_branch_ref.h: sign changes on 4096 intervals, then bisection,
+ * independent of mimas's quartic); *edges their number. */
 static double ring_reference(int *edges)
 {
-    double cut[2 * 4096 + 2] = {0.0};
-    int n = 1;
-    for (int e = 0; e < 2; e++) {
-        double sign = e ? 1.0 : -1.0, prev = ring_edge(0.0, &sign);
-        for (int k = 1; k <= 4096; k++) {
-            double s = k / 4096.0, v = ring_edge(s, &sign);
-            if ((v < 0) != (prev < 0)) {
-                gsl_function F = {ring_edge, &sign};
-                gsl_root_fsolver *sv = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-                gsl_root_fsolver_set(sv, &F, (k - 1) / 4096.0, s);
-                for (int it = 0; it < 200; it++) {
-                    gsl_root_fsolver_iterate(sv);
-                    double lo = gsl_root_fsolver_x_lower(sv), hi = gsl_root_fsolver_x_upper(sv);
-                    if (gsl_root_test_interval(lo, hi, 1e-17, 1e-16) == GSL_SUCCESS)
-                        break;
-                }
-                cut[n++] = gsl_root_fsolver_root(sv);
-                gsl_root_fsolver_free(sv);
-            }
-            prev = v;
-        }
-    }
-    *edges = n - 1;
-    cut[n++] = 1.0;
-    qsort(cut, n, sizeof *cut, cmp_double);
-    double sum = 0.0;
-    for (int k = 0; k + 1 < n; k++) {
-        gsl_function F = {ring_along, NULL};
-        double v, err;
-        gsl_integration_qags(&F, cut[k], cut[k + 1], 1e-14 * phi(0.0), 1e-13, 1000, WS_LINE, &v,
-                             &err);
-        sum += v;
-    }
-    return sum;
+    return ring_branch_integral(ring_along, ring_edge, NULL, 4096, 1e-14 * phi(0.0), edges);
 }
 
 /* Random branches (up to 1.5 mm, anywhere within 6 mm of the axis, every fifth starting
@@ -470,11 +431,9 @@ static void test_random_ring_branches(void **state)
 {
     (void)state;
     gsl_set_error_handler_off();
-    WS_LINE = gsl_integration_workspace_alloc(1000);
     WS_MARG = gsl_integration_workspace_alloc(1000);
     check_ring_branches(2.0, 1e-8);
     check_ring_branches(3.0, 1e-8);
-    gsl_integration_workspace_free(WS_LINE);
     gsl_integration_workspace_free(WS_MARG);
 }
 

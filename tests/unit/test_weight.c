@@ -20,6 +20,7 @@
 
 #include "assert_close.h"
 #include "deposit.h"
+#include "ring_branch_ref.h"
 #include "weight.h"
 
 /* ---- the 3-D kernels, written out independently ---- */
@@ -482,9 +483,9 @@ static void test_ring_series(void **state)
 }
 
 /* The line integral along a + s (b - a), s in [0, 1], of the azimuthal average at the ring
- * (r, z) (SEG_DIMS 2: of the kernel's marginal over z, z unused): adaptive (GSL's qags) on
- * the pieces between the average's edges, where the ring's nearest or farthest point is at
- * the reach (sign changes on 2048 intervals, then bisection). */
+ * (r, z) (SEG_DIMS 2: of the kernel's marginal over z, z unused): adaptive on the pieces
+ * between the average's edges, where the ring's nearest or farthest point is at the reach
+ * (ring_branch_ref.h, 2048 intervals). */
 static double SEG_A[3], SEG_B[3], SEG_R, SEG_Z;
 static int SEG_DIMS = 3;
 
@@ -499,16 +500,11 @@ static double seg_integrand(double s, void *p)
     return ref_ring(SEG_DIMS, SEG_R, seg_rho(s), SEG_Z - SEG_A[2] - s * SEG_B[2]);
 }
 
-static double seg_edge(double s, double sign)
+static double seg_edge(double s, double sign, void *p)
 {
+    (void)p;
     double dz = SEG_DIMS == 3 ? SEG_Z - SEG_A[2] - s * SEG_B[2] : 0.0;
     return hypot(seg_rho(s) + sign * SEG_R, dz) - R_REACH();
-}
-
-static int cmp_double(const void *x, const void *y)
-{
-    double a = *(const double *)x, b = *(const double *)y;
-    return (a > b) - (a < b);
 }
 
 static double ref_ring_segment(const double a[3], const double b[3], double r, double z)
@@ -518,38 +514,7 @@ static double ref_ring_segment(const double a[3], const double b[3], double r, d
         SEG_B[m] = b[m] - a[m];
     }
     SEG_R = r, SEG_Z = z;
-    double cut[2 * 2048 + 2] = {0.0};
-    int n = 1;
-    for (int e = 0; e < 2; e++) {
-        double sign = e ? 1.0 : -1.0, prev = seg_edge(0.0, sign);
-        for (int k = 1; k <= 2048; k++) {
-            double lo = (k - 1) / 2048.0, hi = k / 2048.0, v = seg_edge(hi, sign);
-            if ((v < 0) != (prev < 0)) {
-                for (int it = 0; it < 60; it++) {
-                    double mid = 0.5 * (lo + hi);
-                    if ((seg_edge(mid, sign) < 0) == (prev < 0))
-                        lo = mid;
-                    else
-                        hi = mid;
-                }
-                cut[n++] = 0.5 * (lo + hi);
-            }
-            prev = v;
-        }
-    }
-    cut[n++] = 1.0;
-    qsort(cut, n, sizeof *cut, cmp_double);
-    gsl_integration_workspace *ws = gsl_integration_workspace_alloc(1000);
-    gsl_function F = {seg_integrand, NULL};
-    double sum = 0.0;
-    for (int k = 0; k + 1 < n; k++) {
-        double v, err;
-        gsl_integration_qags(&F, cut[k], cut[k + 1], 1e-14 * ref_phi(0), 1e-13, 1000, ws, &v,
-                             &err);
-        sum += v;
-    }
-    gsl_integration_workspace_free(ws);
-    return sum;
+    return ring_branch_integral(seg_integrand, seg_edge, NULL, 2048, 1e-14 * ref_phi(0), NULL);
 }
 
 /* A contact's branch on an r-z grid: each cell's weight is the integral along the branch of
