@@ -234,7 +234,8 @@ static void add_particle_grad(double *restrict S0, size_t stride, const mimas_we
     memcpy(q, p->q, sizeof q);
     memcpy(qg, p->qg, sizeof qg);
     const size_t *cell = ws->cell;
-    const double *wv = ws->w, *grad = ws->grad;
+    const double *wv = ws->w, *gx = mimas_weights_grad(ws, 0), *gy = mimas_weights_grad(ws, 1),
+                 *gz = mimas_weights_grad(ws, 2);
 #if defined(MIMAS_HAVE_V4D)
     enum { NV = S_PARTICLE_END / 4 };
     v4d qv[NV], gv = *(const v4d *)qg;
@@ -243,7 +244,7 @@ static void add_particle_grad(double *restrict S0, size_t stride, const mimas_we
 #endif
     for (size_t k = 0; k < ws->n; k++) {
         double *restrict S = S0 + cell[k] * stride, w = wv[k];
-        double g0 = grad[3 * k], g1 = grad[3 * k + 1], g2 = grad[3 * k + 2];
+        double g0 = gx[k], g1 = gy[k], g2 = gz[k];
 #if defined(MIMAS_HAVE_V4D)
         for (int m = 0; m < NV; m++)
             *(v4d *)(S + 4 * m) += qv[m] * w;
@@ -279,10 +280,11 @@ static void add_particle(double *S0, size_t stride, const mimas_weights *ws,
         if (ws->has_grad) {
             /* gradients of mass and momentum densities, for the analytic
              * velocity gradient of the kernels */
-            const double *g = &ws->grad[3 * k];
-            for (int b = 0; b < 3; b++)
+            for (int b = 0; b < 3; b++) {
+                double g = mimas_weights_grad(ws, b)[k];
                 for (int m = 0; m < 4; m++)
-                    S[S_G + 4 * b + m] += p->qg[m] * g[b];
+                    S[S_G + 4 * b + m] += p->qg[m] * g;
+            }
         }
         if (shepard)
             for (int m = 0; m < 3; m++)

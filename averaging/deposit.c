@@ -32,11 +32,17 @@ int mimas_weights_reserve(mimas_weights *ws, size_t k)
     double *w = realloc(ws->w, cap * sizeof *w);
     if (w)
         ws->w = w;
-    double *g = realloc(ws->grad, 3 * cap * sizeof *g);
-    if (g)
-        ws->grad = g;
-    if (!c || !w || !g)
+    if (!c || !w)
         return MIMAS_EIO;
+    double *g = realloc(ws->grad, 3 * cap * sizeof *g);
+    if (!g)
+        return MIMAS_EIO;
+    /* the gradients' planes to their new places, the last first (it moves furthest) */
+    if (ws->cap) {
+        memmove(g + 2 * cap, g + 2 * ws->cap, ws->n * sizeof *g);
+        memmove(g + cap, g + ws->cap, ws->n * sizeof *g);
+    }
+    ws->grad = g;
     ws->cap = cap;
     return MIMAS_OK;
 }

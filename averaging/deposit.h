@@ -17,8 +17,9 @@
 
 /* The weights of one object: n cells with their weights and, for kernels
  * that have one (particles only), the weight's gradient with respect to the
- * field point (grad[3k..3k+2], in the grid's x y z or physical r phi z
- * components).  Reused from object to object; grow as needed. */
+ * field point (in the grid's x y z or physical r phi z components), one plane
+ * per component: component d of entry k is grad[d cap + k]
+ * (mimas_weights_grad).  Reused from object to object; grow as needed. */
 typedef struct mimas_weights {
     size_t n, cap;
     size_t *cell;
@@ -30,6 +31,12 @@ typedef struct mimas_weights {
 } mimas_weights;
 
 void mimas_weights_free(mimas_weights *ws);
+
+/* Component d of the gradients: entry k's is mimas_weights_grad(ws, d)[k]. */
+static inline double *mimas_weights_grad(const mimas_weights *ws, int d)
+{
+    return ws->grad + (size_t)d * ws->cap;
+}
 
 /* The periodic images an object may need along each edge of the box: those up to
  * MIMAS_IMAGE_RANGE box widths away (a kernel reaching further is refused) */

@@ -115,66 +115,52 @@ static inline void gauss_row(const mimas_deposit *dp, int d, int lo, int n, doub
 
 /* ---- particles --------------------------------------------------------------------- */
 
-MIMAS_SIMD
-int mimas_gauss_sphere_xyz(const mimas_deposit *dp, const double x[3], int with_grad,
-                           mimas_weights *ws)
+/* What a particle's cells need, per direction d of its box of cells (len[d] from lo[d]):
+ * the Gaussian's factors e[d], the squared offsets q[d] of the cell centres from the
+ * particle and the gradient's factors gf[d] = -(c - x)/w^2.  Along x (the rows) the three
+ * arrays are padded to whole vectors of the build (deposit_gauss_sphere.h): q with
+ * +infinity (outside the ball), e and gf with zeros. */
+typedef struct sphere_box {
+    int lo[3], len[3];
+    double *e[3], *q[3], *gf[3];
+} sphere_box;
+
+/* The box of cells a particle at x may reach and its factors, the list with room for
+ * every cell of the box and `lanes` more; 1 when the particle reaches no cell, MIMAS_EIO
+ * when out of memory. */
+static inline int sphere_setup(const mimas_deposit *dp, const double x[3], int lanes,
+                               mimas_weights *ws, sphere_box *sb)
 {
     const mimas_weight *wt = dp->wt;
-    double reach = mimas_weight_reach(wt);
-    int lo[3], hi[3];
-    if (!dep_candidate_box(dp, x, reach, lo, hi))
-        return MIMAS_OK;
-    int len[3];
+    int hi[3];
+    if (!dep_candidate_box(dp, x, mimas_weight_reach(wt), sb->lo, hi))
+        return 1;
     for (int d = 0; d < 3; d++)
-        len[d] = hi[d] - lo[d] + 1;
-    if (mimas_weights_reserve(ws, (size_t)len[0] * len[1] * len[2]))
+        sb->len[d] = hi[d] - sb->lo[d] + 1;
+    if (mimas_weights_reserve(ws, (size_t)sb->len[0] * sb->len[1] * sb->len[2] + lanes))
         return MIMAS_EIO;
-    /* factors, squared offsets and gradient factors -(c - x)/w^2, per direction */
-    size_t total = (size_t)len[0] + len[1] + len[2];
+    int x_room = (sb->len[0] + lanes - 1) / lanes * lanes; /* along x: whole vectors */
+    int room[3] = {x_room, sb->len[1], sb->len[2]};
+    size_t total = (size_t)room[0] + room[1] + room[2];
     double *buf = mimas_weights_scratch(ws, 3 * total);
     if (!buf)
         return MIMAS_EIO;
-    double *e[3], *q[3], *gf[3];
     for (int d = 0, off = 0; d < 3; d++) {
-        e[d] = buf + off;
-        q[d] = buf + total + off;
-        gf[d] = buf + 2 * total + off;
-        off += len[d];
-        for (int i = 0; i < len[d]; i++) {
-            double dd = dep_centre(dp, d, lo[d] + i) - x[d];
-            q[d][i] = dd * dd;
-            gf[d][i] = -2.0 * wt->inv2w2 * dd;
+        sb->e[d] = buf + off;
+        sb->q[d] = buf + total + off;
+        sb->gf[d] = buf + 2 * total + off;
+        off += room[d];
+        for (int i = 0; i < sb->len[d]; i++) {
+            double dd = dep_centre(dp, d, sb->lo[d] + i) - x[d];
+            sb->q[d][i] = dd * dd;
+            sb->gf[d][i] = -2.0 * wt->inv2w2 * dd;
         }
-        gauss_row(dp, d, lo[d], len[d], x[d], e[d]);
+        gauss_row(dp, d, sb->lo[d], sb->len[d], x[d], sb->e[d]);
+        for (int i = sb->len[d]; i < room[d]; i++) {
+            sb->q[d][i] = INFINITY;
+            sb->e[d][i] = sb->gf[d][i] = 0.0;
+        }
     }
-    const mimas_grid *g = dp->grid;
-    double coef = wt->coef, sh = coef * wt->shift, R2 = wt->reach2;
-    for (int k = 0; k < len[2]; k++)
-        for (int j = 0; j < len[1]; j++) {
-            double qyz = q[1][j] + q[2][k];
-            if (qyz >= R2)
-                continue;
-            /* the cells of the row inside the ball: an interval (q[0] is convex) */
-            int i0 = 0, i1 = len[0] - 1;
-            while (i0 <= i1 && q[0][i0] + qyz >= R2)
-                i0++;
-            while (i1 >= i0 && q[0][i1] + qyz >= R2)
-                i1--;
-            double eyz = coef * e[1][j] * e[2][k];
-            size_t row = (size_t)lo[0] + (size_t)g->n[0] * ((size_t)(lo[1] + j) +
-                                                            (size_t)g->n[1] * (size_t)(lo[2] + k));
-            if (with_grad) {
-                double gy = gf[1][j], gz = gf[2][k];
-                for (int i = i0; i <= i1; i++) {
-                    double v = e[0][i] * eyz;
-                    dep_put_grad(ws, row + (size_t)i, v - sh, v * gf[0][i], v * gy, v * gz);
-                }
-            } else {
-                for (int i = i0; i <= i1; i++)
-                    dep_put(ws, row + (size_t)i, e[0][i] * eyz - sh);
-            }
-        }
-    ws->has_grad = with_grad;
     return MIMAS_OK;
 }
 
@@ -431,6 +417,9 @@ static inline void plane_rows_at(const double *dx1, const double *qa1, const dou
 #define SEG_FN mimas_gauss_segment_xyz_portable
 #define SEG_LANES 1
 #include "deposit_gauss_segment.h"
+#define SPH_FN mimas_gauss_sphere_xyz_portable
+#include "deposit_gauss_sphere.h"
+#undef SPH_FN
 #undef SEG_FN
 #undef SEG_LANES
 
@@ -531,6 +520,9 @@ static inline void seg_pack_run4(size_t *dst, size_t first, int m)
 #include "deposit_gauss_lanes.h"
 #define SEG_FN mimas_gauss_segment_xyz_avx2
 #include "deposit_gauss_segment.h"
+#define SPH_FN mimas_gauss_sphere_xyz_avx2
+#include "deposit_gauss_sphere.h"
+#undef SPH_FN
 #undef SEG_FN
 #undef SEG_LANES
 #pragma GCC pop_options
@@ -558,10 +550,25 @@ static inline void seg_pack_run8(size_t *dst, size_t first, int m)
 #include "deposit_gauss_lanes.h"
 #define SEG_FN mimas_gauss_segment_xyz_avx512
 #include "deposit_gauss_segment.h"
+#define SPH_FN mimas_gauss_sphere_xyz_avx512
+#include "deposit_gauss_sphere.h"
+#undef SPH_FN
 #undef SEG_FN
 #undef SEG_LANES
 #pragma GCC pop_options
 #endif
+
+int mimas_gauss_sphere_xyz(const mimas_deposit *dp, const double x[3], int with_grad,
+                           mimas_weights *ws)
+{
+#if MIMAS_X86_DISPATCH
+    if (__builtin_cpu_supports("avx512f"))
+        return mimas_gauss_sphere_xyz_avx512(dp, x, with_grad, ws);
+    if (__builtin_cpu_supports("avx2"))
+        return mimas_gauss_sphere_xyz_avx2(dp, x, with_grad, ws);
+#endif
+    return mimas_gauss_sphere_xyz_portable(dp, x, with_grad, ws);
+}
 
 int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const double b[3],
                             mimas_weights *ws)

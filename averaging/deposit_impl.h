@@ -24,10 +24,10 @@ static inline void dep_put(mimas_weights *ws, size_t cell, double w)
 static inline void dep_put_grad(mimas_weights *ws, size_t cell, double w, double g0, double g1,
                                 double g2)
 {
-    double *g = &ws->grad[3 * ws->n];
+    double *g = ws->grad + ws->n;
     g[0] = g0;
-    g[1] = g1;
-    g[2] = g2;
+    g[ws->cap] = g1;
+    g[2 * ws->cap] = g2;
     dep_put(ws, cell, w);
 }
 
@@ -94,15 +94,21 @@ int mimas_gauss_sphere_xyz(const mimas_deposit *dp, const double x[3], int with_
 int mimas_gauss_segment_xyz(const mimas_deposit *dp, const double a[3], const double b[3],
                             mimas_weights *ws);
 /* The same built for any processor, and (x86-64) with AVX2 and with AVX-512, which
- * mimas_gauss_segment_xyz chooses from the processor's features: the same weights to the
- * bit (tests/unit/test_segment_builds.c; the last two to be called only where
- * __builtin_cpu_supports says so). */
+ * mimas_gauss_segment_xyz and mimas_gauss_sphere_xyz choose from the processor's features:
+ * the same weights (and gradients) to the bit (tests/unit/test_segment_builds.c; the last
+ * two to be called only where __builtin_cpu_supports says so). */
 int mimas_gauss_segment_xyz_portable(const mimas_deposit *dp, const double a[3],
                                      const double b[3], mimas_weights *ws);
 int mimas_gauss_segment_xyz_avx2(const mimas_deposit *dp, const double a[3], const double b[3],
                                  mimas_weights *ws);
 int mimas_gauss_segment_xyz_avx512(const mimas_deposit *dp, const double a[3],
                                    const double b[3], mimas_weights *ws);
+int mimas_gauss_sphere_xyz_portable(const mimas_deposit *dp, const double x[3], int with_grad,
+                                    mimas_weights *ws);
+int mimas_gauss_sphere_xyz_avx2(const mimas_deposit *dp, const double x[3], int with_grad,
+                                mimas_weights *ws);
+int mimas_gauss_sphere_xyz_avx512(const mimas_deposit *dp, const double x[3], int with_grad,
+                                  mimas_weights *ws);
 /* Makes the table the segment's closed form uses (once; thread-safe). */
 void mimas_gauss_tables(void);
 

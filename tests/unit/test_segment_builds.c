@@ -8,7 +8,9 @@
  * its shorter last cell, near the axis, rows of fewer than four and more than eight
  * cells), for the plain and the shifted Gaussian, cutoffs 3 to 5 and widths from half to
  * three times the cell size.  The portable builds are the ones the deposits' own tests
- * check against independent integrals (test_mercurycg, test_average, test_weight). */
+ * check against independent integrals (test_mercurycg, test_average, test_weight).  The
+ * Gaussian's particles on x-y-z grids are built the same three ways (their rows' cells four
+ * or eight at a time), compared the same way and checked against the kernel here. */
 #include <config.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -245,7 +247,9 @@ static void test_particles_rz(void **state)
                 for (size_t m = 0; m < w0.n; m++) {
                     assert_int_equal(w1.cell[m], w0.cell[m]);
                     assert_memory_equal(&w1.w[m], &w0.w[m], sizeof(double));
-                    assert_memory_equal(&w1.grad[3 * m], &w0.grad[3 * m], 3 * sizeof(double));
+                    for (int d = 0; d < 3; d++)
+                        assert_memory_equal(&mimas_weights_grad(&w1, d)[m],
+                                            &mimas_weights_grad(&w0, d)[m], sizeof(double));
                 }
                 lanes += w0.n;
             }
@@ -267,8 +271,8 @@ static void test_particles_rz(void **state)
             assert_non_null(got);
             for (size_t m = 0; m < w0.n; m++) {
                 got[3 * w0.cell[m]] = w0.w[m];
-                got[3 * w0.cell[m] + 1] = w0.grad[3 * m];
-                got[3 * w0.cell[m] + 2] = w0.grad[3 * m + 2];
+                got[3 * w0.cell[m] + 1] = mimas_weights_grad(&w0, 0)[m];
+                got[3 * w0.cell[m] + 2] = mimas_weights_grad(&w0, 2)[m];
             }
             for (size_t c = 0; c < cells; c++) {
                 assert_true((got[3 * c] != 0.0) == (want[3 * c] != 0.0));
@@ -289,11 +293,152 @@ static void test_particles_rz(void **state)
     assert_true(compared > 20000);
 }
 
+typedef int (*xyz_sphere_build)(const mimas_deposit *, const double *, int, mimas_weights *);
+
+/* Particles on x-y-z grids (the last cells shorter; rows of fewer than four cells and of
+ * more than eight), with and without their gradients: each build the processor runs, and
+ * the one the deposit chooses, gives the portable build's cells in the same order and their
+ * weights and gradients to the bit; the portable build gives, at every cell centre of the
+ * grid, coef (e^{-r^2/2w^2} - shift) and its gradient -(c - x)/w^2 coef e^{-r^2/2w^2}
+ * inside the cut ball and nothing outside, written out here (to 1e-14 of the largest, the
+ * build's factors coming from a recurrence; cells within 1e-12 of the cutoff may go either
+ * way).  Particles added after a first one in the same list grow it: the first one's
+ * weights and gradients stay where they were (the list keeps one plane per component). */
+static void test_particles_xyz(void **state)
+{
+    (void)state;
+    const char *grids[] = {"x=0:0.01:10,y=0:0.012:11,z=0:0.009:10",
+                           "x=0:0.01:3,y=0:0.012:2,z=0:0.009:3",
+                           "x=0:0.01:20,y=0:0.012:24,z=0:0.009:18"};
+    const char *weights[] = {"gauss:w=0.001", "gauss:w=0.001,shift", "gauss:w=0.0007,cutoff=4",
+                             "gauss:w=0.002", "gauss:w=0.0012,cutoff=3.5,shift"};
+    xyz_sphere_build builds[3] = {mimas_gauss_sphere_xyz, NULL, NULL};
+#if MIMAS_X86_DISPATCH
+    if (__builtin_cpu_supports("avx2"))
+        builds[1] = mimas_gauss_sphere_xyz_avx2;
+    if (__builtin_cpu_supports("avx512f"))
+        builds[2] = mimas_gauss_sphere_xyz_avx512;
+#endif
+    size_t checked = 0, compared = 0;
+    for (size_t gi = 0; gi < sizeof grids / sizeof grids[0]; gi++)
+        for (size_t k = 0; k < sizeof weights / sizeof weights[0]; k++) {
+            mimas_grid g;
+            mimas_weight wt;
+            mimas_error err;
+            assert_int_equal(mimas_grid_parse(&g, grids[gi], NULL, &err), 0);
+            assert_int_equal(mimas_weight_parse(&wt, weights[k], &err), 0);
+            mimas_box box = {{0, 0, 0}, {0.01, 0.012, 0.009}, 0, 0, 0, {0, 0, 0}};
+            mimas_deposit dp;
+            assert_int_equal(mimas_deposit_init(&dp, &g, &wt, &box, 0, &err), MIMAS_OK);
+            assert_true(dp.gauss_xyz);
+            gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+            gsl_rng_set(rng, 401 + 10 * gi + k);
+            mimas_weights w0, w1;
+            memset(&w0, 0, sizeof w0);
+            memset(&w1, 0, sizeof w1);
+            size_t cells = mimas_grid_cells(&g);
+            double *want = calloc(4 * cells, sizeof *want), *got = calloc(4 * cells, sizeof *got);
+            assert_non_null(want);
+            assert_non_null(got);
+            for (int p = 0; p < 60; p++) {
+                double x[3];
+                for (int d = 0; d < 3; d++)
+                    x[d] = box.lo[d] - 0.002 +
+                           (box.hi[d] - box.lo[d] + 0.004) * gsl_rng_uniform(rng);
+                int grad = p % 2;
+                w0.n = 0;
+                assert_int_equal(mimas_gauss_sphere_xyz_portable(&dp, x, grad, &w0), 0);
+                for (int b = 0; b < 3; b++) {
+                    if (!builds[b])
+                        continue;
+                    w1.n = 0;
+                    assert_int_equal(builds[b](&dp, x, grad, &w1), 0);
+                    assert_int_equal(w1.n, w0.n);
+                    assert_int_equal(w1.has_grad, grad);
+                    for (size_t m = 0; m < w0.n; m++) {
+                        assert_int_equal(w1.cell[m], w0.cell[m]);
+                        assert_memory_equal(&w1.w[m], &w0.w[m], sizeof(double));
+                        for (int d = 0; grad && d < 3; d++)
+                            assert_memory_equal(&mimas_weights_grad(&w1, d)[m],
+                                                &mimas_weights_grad(&w0, d)[m], sizeof(double));
+                    }
+                    compared += w0.n;
+                }
+                /* every cell centre against the kernel written out */
+                double big = 0.0, bigg = 0.0;
+                memset(got, 0, 4 * cells * sizeof *got);
+                for (size_t c = 0; c < cells; c++) {
+                    double ctr[3], r2 = 0.0, dd[3];
+                    mimas_grid_cell_centre(&g, c, ctr);
+                    for (int d = 0; d < 3; d++) {
+                        dd[d] = ctr[d] - x[d];
+                        r2 += dd[d] * dd[d];
+                    }
+                    double e = wt.coef * exp(-r2 / (2.0 * wt.w * wt.w));
+                    int in = r2 < wt.reach2;
+                    want[4 * c] = in ? e - wt.coef * wt.shift : 0.0;
+                    for (int d = 0; d < 3; d++)
+                        want[4 * c + 1 + d] = in ? -dd[d] / (wt.w * wt.w) * e : 0.0;
+                    big = fmax(big, fabs(e));
+                    for (int d = 0; d < 3; d++)
+                        bigg = fmax(bigg, fabs(want[4 * c + 1 + d]));
+                    /* NaN: a cell at the cutoff, which may go either way */
+                    if (fabs(r2 - wt.reach2) < 1e-12 * wt.reach2)
+                        want[4 * c] = NAN;
+                }
+                for (size_t m = 0; m < w0.n; m++) {
+                    size_t c = w0.cell[m];
+                    assert_true(c < cells);
+                    assert_true(got[4 * c] == 0.0); /* each cell once */
+                    got[4 * c] = w0.w[m];
+                    for (int d = 0; grad && d < 3; d++)
+                        got[4 * c + 1 + d] = mimas_weights_grad(&w0, d)[m];
+                    assert_true(got[4 * c] != 0.0 || wt.shifted);
+                }
+                for (size_t c = 0; c < cells; c++) {
+                    if (isnan(want[4 * c]))
+                        continue;
+                    assert_close(got[4 * c], want[4 * c], 1e-14 * big);
+                    for (int d = 0; grad && d < 3; d++)
+                        assert_close(got[4 * c + 1 + d], want[4 * c + 1 + d], 1e-14 * bigg);
+                    checked++;
+                }
+                /* a second particle after the first in a new list, until it grows */
+                if (p == 1 && w0.n > 0) {
+                    mimas_weights w2;
+                    memset(&w2, 0, sizeof w2);
+                    assert_int_equal(mimas_gauss_sphere_xyz_portable(&dp, x, 1, &w2), 0);
+                    size_t n0 = w2.n, cap0 = w2.cap;
+                    while (w2.cap == cap0) /* the same particle again: n0 more each time */
+                        assert_int_equal(mimas_gauss_sphere_xyz_portable(&dp, x, 1, &w2), 0);
+                    for (size_t m = 0; m < n0; m++) {
+                        assert_int_equal(w2.cell[m], w0.cell[m]);
+                        assert_memory_equal(&w2.w[m], &w0.w[m], sizeof(double));
+                        for (int d = 0; d < 3; d++)
+                            assert_memory_equal(&mimas_weights_grad(&w2, d)[m],
+                                                &mimas_weights_grad(&w0, d)[m], sizeof(double));
+                    }
+                    mimas_weights_free(&w2);
+                }
+            }
+            free(want);
+            free(got);
+            mimas_weights_free(&w0);
+            mimas_weights_free(&w1);
+            gsl_rng_free(rng);
+        }
+    printf("# particles on x-y-z grids: %zu cells checked, %zu weights compared between "
+           "builds\n", checked, compared);
+    assert_true(checked > 100000);
+    assert_true(compared > 10000);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_builds_agree),
         cmocka_unit_test(test_particles_rz),
+        cmocka_unit_test(test_particles_xyz),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
