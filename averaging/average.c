@@ -23,8 +23,10 @@ struct mimas_average {
     size_t cells, frames;
     double *sum;            /* cells x NSUMS, summed over frames */
     size_t used;            /* the leading sums this average uses (sums_used) */
-    double *frame_sum;      /* cells x used, this frame */
-    double *thread_sum;     /* threads x cells x used (more than one thread) */
+    size_t stride;          /* a cell's row in a frame's sums: used, rounded up to a whole
+                             * number of cache lines (SUM_LINE) */
+    double *frame_sum;      /* cells x stride, this frame */
+    double *thread_sum;     /* threads x cells x stride (more than one thread) */
     int threads;
     /* per-frame field statistics (Welford), cells x nfields each */
     double *f_mean, *f_m2, *f_count;
@@ -53,7 +55,7 @@ static int with_gradients(const mimas_weight *wt)
 
 /* How many of the leading sums (fields.h) an average with this weight adds to: a
  * frame's sums hold only these, so that zeroing them, filling them and adding them
- * up moves no more memory than it must (bins: 38 of the 64). */
+ * up moves no more memory than it must (bins: 35 of the 61). */
 static size_t sums_used(const mimas_weight *wt)
 {
     if (wt->voronoi)
@@ -61,6 +63,21 @@ static size_t sums_used(const mimas_weight *wt)
     if (wt->kind == MIMAS_WEIGHT_SHEPARD)
         return S_U + 3;
     return with_gradients(wt) ? S_G + 12 : S_G;
+}
+
+/* The doubles of a 64-byte cache line: a frame's sums give each cell a whole number of
+ * lines, starting at a line's start, so that a particle's 16 sums (S_N..S_K) and a
+ * contact's 16 (S_C..S_F) take two lines each, not three. */
+#define SUM_LINE 8
+
+/* n doubles, zero, starting at a cache line (NULL when out of memory); free() frees them */
+static double *line_alloc(size_t n)
+{
+    size_t bytes = (n * sizeof(double) + 63) / 64 * 64;
+    double *p = aligned_alloc(64, bytes ? bytes : 64);
+    if (p)
+        memset(p, 0, bytes);
+    return p;
 }
 
 int mimas_average_create(mimas_average **out, const mimas_average_options *o, mimas_error *err)
@@ -82,11 +99,12 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
     /* one frame's sums: where one thread deposits, and what the spread is taken of;
      * more threads without the spread add their copies straight into the sum */
     int frame_sums = a->threads == 1 || o->spread;
+    a->stride = (a->used + SUM_LINE - 1) / SUM_LINE * SUM_LINE;
     if (frame_sums)
-        a->frame_sum = calloc(a->cells * a->used, sizeof *a->frame_sum);
+        a->frame_sum = line_alloc(a->cells * a->stride);
     a->scratch = calloc(nf, sizeof *a->scratch);
     if (a->threads > 1)
-        a->thread_sum = calloc((size_t)a->threads * a->cells * a->used, sizeof *a->thread_sum);
+        a->thread_sum = line_alloc((size_t)a->threads * a->cells * a->stride);
     a->ws = calloc((size_t)a->threads, sizeof *a->ws);
     /* the plain cut Gaussian's jump at its cutoff carries the part kappa of a linear
      * field's gradient where the 3-D kernel is sampled at cell centres; its marginals
@@ -461,7 +479,7 @@ static int deposit_objects(const mimas_average *a, const mimas_frame *f, const m
     const mimas_particles *p = &f->particles;
     int shepard = a->opt.weight.kind == MIMAS_WEIGHT_SHEPARD, voronoi = a->opt.weight.voronoi;
     int with_grad = with_gradients(&a->opt.weight);
-    size_t stride = a->used;
+    size_t stride = a->stride;
     for (size_t k = share_first(p->n, t); k < p->n; k = share_next(k, p->n, nt)) {
         if (!a->keep[k])
             continue;
@@ -483,8 +501,8 @@ static int deposit_objects(const mimas_average *a, const mimas_frame *f, const m
             pv.v[i] = v[i];
             pv.q[S_P + i] = m * v[i];
             pv.qg[1 + i] = m * v[i];
-            for (int j = 0; j < 3; j++)
-                pv.q[S_K + 3 * i + j] = m * v[i] * v[j];
+            for (int j = i; j < 3; j++)
+                pv.q[S_K + mimas_sym_index(i, j)] = m * v[i] * v[j];
         }
         if (voronoi) {
             /* V_cell sigma_k: an empty cell's stress is NaN and left out */
@@ -570,7 +588,7 @@ static int deposit_frame_sums(mimas_average *a, const mimas_frame *f, const mima
                               const mimas_deposit *dp)
 {
     double *S = a->frame_sum;
-    size_t used = a->used, nsum = a->cells * used;
+    size_t used = a->used, stride = a->stride, nsum = a->cells * stride;
     if (a->threads > 1) {
         /* each thread deposits into its own sums, added up afterwards: the
          * result depends on the thread count only through summation order.
@@ -597,7 +615,7 @@ static int deposit_frame_sums(mimas_average *a, const mimas_frame *f, const mima
             size_t c1 = bad ? 0 : a->cells * (size_t)(t + 1) / (size_t)nt;
             for (size_t cell = c0; cell < c1; cell++)
                 for (size_t m = 0; m < used; m++) {
-                    size_t k = cell * used + m;
+                    size_t k = cell * stride + m;
                     double sum = 0.0;
                     for (int u = 0; u < nt; u++)
                         sum += a->thread_sum[(size_t)u * nsum + k];
@@ -614,7 +632,7 @@ static int deposit_frame_sums(mimas_average *a, const mimas_frame *f, const mima
         return MIMAS_EIO;
     for (size_t cell = 0; cell < a->cells; cell++)
         for (size_t m = 0; m < used; m++)
-            a->sum[cell * NSUMS + m] += S[cell * used + m];
+            a->sum[cell * NSUMS + m] += S[cell * stride + m];
     return MIMAS_OK;
 }
 
@@ -641,7 +659,7 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
             if (cyl)
                 mimas_grid_cell_centre(&g, cell, ctr);
             double S[NSUMS] = {0}; /* the sums this average does not use are 0 */
-            memcpy(S, &a->frame_sum[cell * a->used], a->used * sizeof *S);
+            memcpy(S, &a->frame_sum[cell * a->stride], a->used * sizeof *S);
             mimas_fields_derive(S, cyl, ctr[0], fields_mode(&a->opt.weight), a->scratch);
             for (size_t q = 0; q < nf; q++) {
                 double x = a->scratch[q];

@@ -143,7 +143,7 @@ void mimas_fields_derive(const double *S, int cylindrical, double r, mimas_field
     double K[9];
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++)
-            K[3 * a + b] = rho > 0 ? S[S_K + 3 * a + b] - rho * V[a] * V[b] : 0.0;
+            K[3 * a + b] = rho > 0 ? S[S_K + mimas_sym_index(a, b)] - rho * V[a] * V[b] : 0.0;
     double T[9];
     for (int k = 0; k < 9; k++)
         T[k] = K[k] + S[S_C + k];

@@ -25,8 +25,9 @@ enum {
     S_ZN,           /* the same over particles with c_p >= 2 */
     S_NN,           /* sum phi over particles with c_p >= 2 */
     S_P,            /* 3: sum m v phi */
-    S_K = S_P + 3,  /* 9: sum m v (x) v phi */
-    S_PARTICLE_END = S_K + 9,
+    S_K = S_P + 3,  /* 6: sum m v (x) v phi (symmetric: xx yy zz xy xz yz), so that a
+                     * particle adds 16 sums, two cache lines */
+    S_PARTICLE_END = S_K + 6,
     S_C = S_PARTICLE_END, /* 9: sum f (x) b psi, contact stress */
     S_F = S_C + 9,  /* 6: sum n (x) n psi, fabric (symmetric: xx yy zz xy xz yz), and a 0,
                      * so that a contact adds 16 sums, four vectors of 4 */
@@ -39,6 +40,12 @@ enum {
     S_VS,           /* 9: sum V_cell sigma phi: per-particle Voronoi stresses */
     NSUMS = S_VS + 9
 };
+/* The place of component (a, b) in a symmetric block (S_K, S_F): xx yy zz xy xz yz */
+static inline int mimas_sym_index(int a, int b)
+{
+    static const int at[3][3] = {{0, 3, 4}, {3, 1, 5}, {4, 5, 2}};
+    return at[a][b];
+}
 #define S_GM(b) (S_G + 4 * (b))             /* sum m d_b phi */
 #define S_GP(a, b) (S_G + 4 * (b) + 1 + (a)) /* sum m v_a d_b phi */
 

@@ -137,7 +137,7 @@ static void test_particle_fields(void **state)
             assert_digits(S[S_W + d], rows[r][M_IF + d]);
         }
         for (int q = 0; q < 6; q++)
-            assert_digits(S[S_K + 3 * sym[q][0] + sym[q][1]], rows[r][M_FLUX + q]);
+            assert_digits(S[S_K + mimas_sym_index(sym[q][0], sym[q][1])], rows[r][M_FLUX + q]);
     }
     free(rows);
     mimas_average_free(a);
