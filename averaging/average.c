@@ -242,10 +242,9 @@ typedef struct particle_vals {
     double stress[9];           /* V_cell sigma in the local basis */
 } particle_vals;
 
-/* The usual case in one tight loop: the particle block (16 sums, two rows of 8) and the
- * gradients (the same products and sums as element by element). */
-_Static_assert(S_PARTICLE_END == 16, "a particle adds two rows of 8 sums");
-MIMAS_SIMD_WIDE
+/* The usual case in one tight loop: the particle block and the gradients, four
+ * sums at a time (the same products and sums as element by element). */
+MIMAS_SIMD
 static void add_particle_grad(double *restrict S0, size_t stride, const mimas_weights *ws,
                               const particle_vals *p)
 {
@@ -256,18 +255,21 @@ static void add_particle_grad(double *restrict S0, size_t stride, const mimas_we
     const double *wv = ws->w, *gx = mimas_weights_grad(ws, 0), *gy = mimas_weights_grad(ws, 1),
                  *gz = mimas_weights_grad(ws, 2);
 #if defined(MIMAS_HAVE_V4D)
-    v8d qa = *(const v8d *)q, qb = *(const v8d *)(q + 8);
-    v8d gg = {qg[0], qg[1], qg[2], qg[3], qg[0], qg[1], qg[2], qg[3]};
-    v4d gv = *(const v4d *)qg;
+    enum { NV = S_PARTICLE_END / 4 };
+    v4d qv[NV], gv = *(const v4d *)qg;
+    for (int m = 0; m < NV; m++)
+        qv[m] = *(const v4d *)(q + 4 * m);
 #endif
     for (size_t k = 0; k < ws->n; k++) {
         double *restrict S = S0 + cell[k] * stride, w = wv[k];
         double g0 = gx[k], g1 = gy[k], g2 = gz[k];
 #if defined(MIMAS_HAVE_V4D)
-        v8d g01 = {g0, g0, g0, g0, g1, g1, g1, g1};
-        *(v8d *)S += qa * w;
-        *(v8d *)(S + 8) += qb * w;
-        *(v8d *)(S + S_G) += gg * g01;
+        for (int m = 0; m < NV; m++)
+            *(v4d *)(S + 4 * m) += qv[m] * w;
+        for (int m = 4 * NV; m < S_PARTICLE_END; m++)
+            S[m] += q[m] * w;
+        *(v4d *)(S + S_G) += gv * g0;
+        *(v4d *)(S + S_G + 4) += gv * g1;
         *(v4d *)(S + S_G + 8) += gv * g2;
 #else
         for (int m = 0; m < S_PARTICLE_END; m++)
@@ -316,8 +318,8 @@ static void add_particle(double *S0, size_t stride, const mimas_weights *ws,
     }
 }
 
-/* A contact's 16 sums, S_C..S_W (fields.h), two rows of 8. */
-MIMAS_SIMD_WIDE
+/* A contact's 16 sums, S_C..S_W (fields.h), four at a time. */
+MIMAS_SIMD
 static void add_contact(double *restrict S0, size_t stride, const mimas_weights *ws,
                         const double *qin)
 {
@@ -326,13 +328,16 @@ static void add_contact(double *restrict S0, size_t stride, const mimas_weights 
     const size_t *cell = ws->cell;
     const double *wv = ws->w;
 #if defined(MIMAS_HAVE_V4D)
-    v8d qa = *(const v8d *)q, qb = *(const v8d *)(q + 8);
+    v4d q0 = *(const v4d *)q, q1 = *(const v4d *)(q + 4), q2 = *(const v4d *)(q + 8),
+        q3 = *(const v4d *)(q + 12);
 #endif
     for (size_t k = 0; k < ws->n; k++) {
         double *restrict S = S0 + cell[k] * stride + S_C, w = wv[k];
 #if defined(MIMAS_HAVE_V4D)
-        *(v8d *)S += qa * w;
-        *(v8d *)(S + 8) += qb * w;
+        *(v4d *)S += q0 * w;
+        *(v4d *)(S + 4) += q1 * w;
+        *(v4d *)(S + 8) += q2 * w;
+        *(v4d *)(S + 12) += q3 * w;
 #else
         for (int m = 0; m < 16; m++)
             S[m] += q[m] * w;

@@ -10,15 +10,12 @@
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
     __GNUC__ >= 6
 #define MIMAS_SIMD __attribute__((target_clones("avx2", "default")))
-/* the same, and built for AVX-512 too: loops whose rows of 8 doubles (v8d) are one register */
-#define MIMAS_SIMD_WIDE __attribute__((target_clones("avx512f", "avx2", "default")))
 /* the same processors: a function built twice, once under #pragma GCC target("avx2")
  * with its intrinsics, chosen by __builtin_cpu_supports (the Gaussian's line integrals,
  * deposit_gauss.c and deposit_ring.c) */
 #define MIMAS_X86_DISPATCH 1
 #else
 #define MIMAS_SIMD
-#define MIMAS_SIMD_WIDE
 #define MIMAS_X86_DISPATCH 0
 #endif
 
@@ -29,7 +26,6 @@
 #if defined(__GNUC__)
 #define MIMAS_HAVE_V4D 1
 typedef double v4d __attribute__((vector_size(32), aligned(8), may_alias));
-typedef double v8d __attribute__((vector_size(64), aligned(8), may_alias));
 #endif
 
 #endif
