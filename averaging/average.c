@@ -255,6 +255,7 @@ static void add_particle_grad(double *restrict S0, size_t stride, const mimas_we
     const double *wv = ws->w, *gx = mimas_weights_grad(ws, 0), *gy = mimas_weights_grad(ws, 1),
                  *gz = mimas_weights_grad(ws, 2);
 #if defined(MIMAS_HAVE_V4D)
+    _Static_assert(S_PARTICLE_END % 4 == 0, "a particle's sums are whole vectors of 4");
     enum { NV = S_PARTICLE_END / 4 };
     v4d qv[NV], gv = *(const v4d *)qg;
     for (int m = 0; m < NV; m++)
@@ -266,8 +267,6 @@ static void add_particle_grad(double *restrict S0, size_t stride, const mimas_we
 #if defined(MIMAS_HAVE_V4D)
         for (int m = 0; m < NV; m++)
             *(v4d *)(S + 4 * m) += qv[m] * w;
-        for (int m = 4 * NV; m < S_PARTICLE_END; m++)
-            S[m] += q[m] * w;
         *(v4d *)(S + S_G) += gv * g0;
         *(v4d *)(S + S_G + 4) += gv * g1;
         *(v4d *)(S + S_G + 8) += gv * g2;

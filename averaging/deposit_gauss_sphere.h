@@ -3,7 +3,7 @@
  * of sphere_setup at the cell centres, and with with_grad its gradient.  deposit_gauss.c
  * includes this once for each build, as SPH_FN with SEG_LANES lanes (1: any processor;
  * 4, 8: under the #pragma GCC target of the vector builds, with lanes_x86.h's SEG_VT,
- * SEG_MT, SEG_BITS and deposit_gauss.c's SEG_PACK_RUN).
+ * SEG_MT, SEG_BITS and deposit_gauss.c's SEG_PACK and SEG_PACK_RUN).
  *
  * A row's cells along x are taken SEG_LANES at a time: those inside the ball moved to the
  * front of the vector (SEG_PACK, SEG_PACK_RUN) and the whole vector stored at the end of

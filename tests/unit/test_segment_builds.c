@@ -68,6 +68,16 @@ static void assert_same(const mimas_weights *w1, const mimas_weights *w2, const 
     free(e2);
 }
 
+/* The deposit of `weight` on `grid` (its bounds as given) in `box`, into g, wt and dp */
+static void deposit_on(const char *grid, const char *weight, const mimas_box *box,
+                       mimas_grid *g, mimas_weight *wt, mimas_deposit *dp)
+{
+    mimas_error err;
+    assert_int_equal(mimas_grid_parse(g, grid, NULL, &err), 0);
+    assert_int_equal(mimas_weight_parse(wt, weight, &err), 0);
+    assert_int_equal(mimas_deposit_init(dp, g, wt, box, 0, &err), MIMAS_OK);
+}
+
 typedef int (*rz_build)(const mimas_deposit *, const double *, const double *, const double *,
                         double, double, mimas_weights *);
 typedef int (*xyz_build)(const mimas_deposit *, const double *, const double *,
@@ -80,12 +90,9 @@ static size_t compare_builds(const char *grid, const char *weight, int periodic,
 {
     mimas_grid g;
     mimas_weight wt;
-    mimas_error err;
-    assert_int_equal(mimas_grid_parse(&g, grid, NULL, &err), 0);
-    assert_int_equal(mimas_weight_parse(&wt, weight, &err), 0);
-    mimas_box box = {{0, 0, 0}, {0.01, 0.012, 0.009}, 0, 0, 0, {periodic, periodic, periodic}};
     mimas_deposit dp;
-    assert_int_equal(mimas_deposit_init(&dp, &g, &wt, &box, 0, &err), MIMAS_OK);
+    mimas_box box = {{0, 0, 0}, {0.01, 0.012, 0.009}, 0, 0, 0, {periodic, periodic, periodic}};
+    deposit_on(grid, weight, &box, &g, &wt, &dp);
     assert_true(dp.gauss_xyz || dp.gauss_rz);
     mimas_gauss_tables();
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
@@ -217,12 +224,9 @@ static void test_particles_rz(void **state)
     for (size_t k = 0; k < sizeof weights / sizeof weights[0]; k++) {
         mimas_grid g;
         mimas_weight wt;
-        mimas_error err;
-        assert_int_equal(mimas_grid_parse(&g, "r=0:0.011:11,z=0:0.009:9", NULL, &err), 0);
-        assert_int_equal(mimas_weight_parse(&wt, weights[k], &err), 0);
-        mimas_box box = {{0, 0, 0}, {0.011, 0.011, 0.009}, 0, 0, 0, {0, 0, 0}};
         mimas_deposit dp;
-        assert_int_equal(mimas_deposit_init(&dp, &g, &wt, &box, 0, &err), MIMAS_OK);
+        mimas_box box = {{0, 0, 0}, {0.011, 0.011, 0.009}, 0, 0, 0, {0, 0, 0}};
+        deposit_on("r=0:0.011:11,z=0:0.009:9", weights[k], &box, &g, &wt, &dp);
         assert_true(dp.gauss_rz);
         gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
         gsl_rng_set(rng, 301 + k);
@@ -324,12 +328,9 @@ static void test_particles_xyz(void **state)
         for (size_t k = 0; k < sizeof weights / sizeof weights[0]; k++) {
             mimas_grid g;
             mimas_weight wt;
-            mimas_error err;
-            assert_int_equal(mimas_grid_parse(&g, grids[gi], NULL, &err), 0);
-            assert_int_equal(mimas_weight_parse(&wt, weights[k], &err), 0);
-            mimas_box box = {{0, 0, 0}, {0.01, 0.012, 0.009}, 0, 0, 0, {0, 0, 0}};
             mimas_deposit dp;
-            assert_int_equal(mimas_deposit_init(&dp, &g, &wt, &box, 0, &err), MIMAS_OK);
+            mimas_box box = {{0, 0, 0}, {0.01, 0.012, 0.009}, 0, 0, 0, {0, 0, 0}};
+            deposit_on(grids[gi], weights[k], &box, &g, &wt, &dp);
             assert_true(dp.gauss_xyz);
             gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
             gsl_rng_set(rng, 401 + 10 * gi + k);
