@@ -14,6 +14,7 @@
 #include "deposit.h"
 #include "fields.h"
 #include "simd.h"
+#include "big_alloc.h"
 #include "parallel.h"
 #include "voronoi.h"
 
@@ -66,19 +67,9 @@ static size_t sums_used(const mimas_weight *wt)
 }
 
 /* The doubles of a 64-byte cache line: a frame's sums give each cell a whole number of
- * lines, starting at a line's start, so that a particle's 16 sums (S_N..S_K) and a
- * contact's 16 (S_C..S_F) take two lines each, not three. */
+ * lines, starting at a line's start (mimas_big_calloc), so that a particle's 16 sums
+ * (S_N..S_K) and a contact's 16 (S_C..S_F) take two lines each, not three. */
 #define SUM_LINE 8
-
-/* n doubles, zero, starting at a cache line (NULL when out of memory); free() frees them */
-static double *line_alloc(size_t n)
-{
-    size_t bytes = (n * sizeof(double) + 63) / 64 * 64;
-    double *p = aligned_alloc(64, bytes ? bytes : 64);
-    if (p)
-        memset(p, 0, bytes);
-    return p;
-}
 
 int mimas_average_create(mimas_average **out, const mimas_average_options *o, mimas_error *err)
 {
@@ -90,7 +81,7 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
     a->grid = o->grid;
     a->cells = o->grid_none ? 1 : mimas_grid_cells(&o->grid);
     size_t nf = mimas_fields_count();
-    a->sum = calloc(a->cells * NSUMS, sizeof *a->sum);
+    a->sum = mimas_big_calloc(a->cells * NSUMS, sizeof *a->sum);
     a->used = sums_used(&o->weight);
     a->threads = 1;
 #ifdef _OPENMP
@@ -101,10 +92,10 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
     int frame_sums = a->threads == 1 || o->spread;
     a->stride = (a->used + SUM_LINE - 1) / SUM_LINE * SUM_LINE;
     if (frame_sums)
-        a->frame_sum = line_alloc(a->cells * a->stride);
+        a->frame_sum = mimas_big_calloc(a->cells * a->stride, sizeof(double));
     a->scratch = calloc(nf, sizeof *a->scratch);
     if (a->threads > 1)
-        a->thread_sum = line_alloc((size_t)a->threads * a->cells * a->stride);
+        a->thread_sum = mimas_big_calloc((size_t)a->threads * a->cells * a->stride, sizeof(double));
     a->ws = calloc((size_t)a->threads, sizeof *a->ws);
     /* the plain cut Gaussian's jump at its cutoff carries the part kappa of a linear
      * field's gradient where the 3-D kernel is sampled at cell centres; its marginals
@@ -117,9 +108,9 @@ int mimas_average_create(mimas_average **out, const mimas_average_options *o, mi
     int ok = a->sum && (a->frame_sum || !frame_sums) && a->scratch && a->ws &&
              (a->threads == 1 || a->thread_sum);
     if (ok && o->spread) {
-        a->f_mean = calloc(a->cells * nf, sizeof *a->f_mean);
-        a->f_m2 = calloc(a->cells * nf, sizeof *a->f_m2);
-        a->f_count = calloc(a->cells * nf, sizeof *a->f_count);
+        a->f_mean = mimas_big_calloc(a->cells * nf, sizeof *a->f_mean);
+        a->f_m2 = mimas_big_calloc(a->cells * nf, sizeof *a->f_m2);
+        a->f_count = mimas_big_calloc(a->cells * nf, sizeof *a->f_count);
         ok = a->f_mean && a->f_m2 && a->f_count;
     }
     if (!ok) {
@@ -146,12 +137,12 @@ void mimas_average_free(mimas_average *a)
 {
     if (!a)
         return;
-    free(a->sum);
-    free(a->frame_sum);
-    free(a->thread_sum);
-    free(a->f_mean);
-    free(a->f_m2);
-    free(a->f_count);
+    mimas_big_free(a->sum);
+    mimas_big_free(a->frame_sum);
+    mimas_big_free(a->thread_sum);
+    mimas_big_free(a->f_mean);
+    mimas_big_free(a->f_m2);
+    mimas_big_free(a->f_count);
     free(a->scratch);
     free(a->keep);
     free(a->ncontacts);
@@ -733,13 +724,10 @@ static int velocity_gradient(const mimas_average *a, const double *fields, size_
 
 int mimas_average_fields(const mimas_average *a, double *fields, double *sd, double *count)
 {
-    size_t nf = mimas_fields_count();
+    size_t nf = mimas_fields_count(), iv = mimas_fields_velocity();
     int cyl = a->grid.kind == MIMAS_GRID_CYLINDRICAL && !a->opt.grid_none;
-    double *sums = malloc(a->cells * NSUMS * sizeof *sums);
-    if (!sums)
-        return -1;
     for (size_t cell = 0; cell < a->cells; cell++) {
-        double *S = &sums[cell * NSUMS];
+        double S[NSUMS];
         mimas_average_sums(a, cell, S);
         double ctr[3] = {0, 0, 0};
         if (cyl)
@@ -755,15 +743,18 @@ int mimas_average_fields(const mimas_average *a, double *fields, double *sd, dou
                 count[at] = n;
         }
     }
+    /* the strain rates need the velocities of the neighbours: a second pass, the cell's
+     * sums formed again (no copy of all cells' sums: that was as large as the sums) */
     for (size_t cell = 0; cell < a->cells && !a->opt.grid_none; cell++) {
-        double L[3][3], ctr[3] = {0, 0, 0};
+        if (isnan(fields[cell * nf + iv]))
+            continue;
+        double L[3][3], ctr[3] = {0, 0, 0}, S[NSUMS];
+        mimas_average_sums(a, cell, S);
         if (cyl)
             mimas_grid_cell_centre(&a->grid, cell, ctr);
-        if (velocity_gradient(a, fields, nf, cell, &sums[cell * NSUMS], L))
-            mimas_fields_strain(L, &sums[cell * NSUMS], cyl, ctr[0], a->opt.diameter,
-                                &fields[cell * nf]);
+        if (velocity_gradient(a, fields, nf, cell, S, L))
+            mimas_fields_strain(L, S, cyl, ctr[0], a->opt.diameter, &fields[cell * nf]);
     }
-    free(sums);
     return 0;
 }
 

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "fields.h"
+#include "big_alloc.h"
 #include "h5util.h"
 #include "output_h5.h"
 #include "parameters_h5.h"
@@ -47,9 +48,9 @@ void mimas_fieldset_close(mimas_fieldset *fs)
     }
     for (int d = 0; d < 3; d++)
         free(fs->centre[d]);
-    free(fs->mean);
-    free(fs->sd);
-    free(fs->count);
+    mimas_big_free(fs->mean);
+    mimas_big_free(fs->sd);
+    mimas_big_free(fs->count);
     mimas_parameters_free(&fs->params);
     free(fs);
 }
@@ -102,9 +103,9 @@ int mimas_fieldset_from_average(mimas_fieldset **out, const mimas_average *avg, 
         fs->grid.centre[d] = fs->centre[d];
     }
     size_t all = fs->grid.cells * mimas_fields_count();
-    fs->mean = malloc(all * sizeof *fs->mean);
-    fs->sd = malloc(all * sizeof *fs->sd);
-    fs->count = malloc(all * sizeof *fs->count);
+    fs->mean = mimas_big_calloc(all, sizeof *fs->mean);
+    fs->sd = mimas_big_calloc(all, sizeof *fs->sd);
+    fs->count = mimas_big_calloc(all, sizeof *fs->count);
     if (!ok || !fs->mean || !fs->sd || !fs->count ||
         mimas_average_fields(avg, fs->mean, fs->sd, fs->count)) {
         mimas_fieldset_close(fs);

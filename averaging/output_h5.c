@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "fields.h"
+#include "big_alloc.h"
 #include "h5util.h"
 #include "output_xdmf.h"
 #include "tmpfiles.h"
@@ -189,7 +190,7 @@ int mimas_fields_append_frame(mimas_fields_file *ff, const mimas_average *frame,
     size_t cells = none ? 1 : mimas_grid_cells(g), nf = mimas_fields_count();
     hsize_t dims[3];
     dims_of(g, none, dims);
-    double *all = malloc(cells * nf * sizeof *all), *col = malloc(cells * sizeof *col);
+    double *all = mimas_big_calloc(cells * nf, sizeof *all), *col = malloc(cells * sizeof *col);
     int rc = !all || !col || mimas_average_fields(frame, all, NULL, NULL);
     h5_quiet_begin(&ff->quiet);
     if (!rc && !ff->per) {
@@ -244,7 +245,7 @@ int mimas_fields_append_frame(mimas_fields_file *ff, const mimas_average *frame,
             ff->frames++;
     }
     h5_quiet_end(&ff->quiet);
-    free(all);
+    mimas_big_free(all);
     free(col);
     return rc ? mimas_error_set(err, MIMAS_EIO, "%s: cannot write the fields of step %lld",
                                 ff->path, (long long)step)
@@ -258,10 +259,11 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
     int none = mimas_average_grid_none(a);
     int cyl = g->kind == MIMAS_GRID_CYLINDRICAL && !none;
     size_t cells = none ? 1 : mimas_grid_cells(g), nf = mimas_fields_count();
-    double *mean = malloc(cells * nf * sizeof *mean), *sd = malloc(cells * nf * sizeof *sd),
-           *count = malloc(cells * nf * sizeof *count), *col = malloc(cells * sizeof *col);
+    double *mean = mimas_big_calloc(cells * nf, sizeof *mean),
+           *sd = mimas_big_calloc(cells * nf, sizeof *sd),
+           *count = mimas_big_calloc(cells * nf, sizeof *count), *col = malloc(cells * sizeof *col);
     if (!mean || !sd || !count || !col || mimas_average_fields(a, mean, sd, count)) {
-        free(mean), free(sd), free(count), free(col);
+        mimas_big_free(mean), mimas_big_free(sd), mimas_big_free(count), free(col);
         int code = mimas_error_set(err, MIMAS_EIO, "%s: out of memory for the fields of %zu "
                                    "cells", ff->path, cells);
         mimas_fields_abort(ff);
@@ -362,7 +364,8 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
             rc = 2;
     }
     h5_quiet_end(&q);
-    free(mean), free(sd), free(count), free(col), free(times);
+    mimas_big_free(mean), mimas_big_free(sd), mimas_big_free(count);
+    free(col), free(times);
     if (!rc && rename(ff->tmp, ff->path) != 0) {
         rc = 1;
         snprintf(why, sizeof why, "cannot rename it into place: %s", strerror(errno));

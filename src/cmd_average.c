@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "average.h"
+#include "big_alloc.h"
 #include "cli_frames.h"
 #include "cli_table.h"
 #include "commands.h"
@@ -168,9 +169,9 @@ static int write_rows(cli_table *t, const mimas_average *avg, int grid_none,
                 fast = d;
         }
     /* the spread only for --errors; a row's numbers gathered for one cli_table_doubles */
-    double *mean = malloc(cells * nf * sizeof *mean),
-           *sd = errors ? malloc(cells * nf * sizeof *sd) : NULL,
-           *count = errors ? malloc(cells * nf * sizeof *count) : NULL,
+    double *mean = mimas_big_calloc(cells * nf, sizeof *mean),
+           *sd = errors ? mimas_big_calloc(cells * nf, sizeof *sd) : NULL,
+           *count = errors ? mimas_big_calloc(cells * nf, sizeof *count) : NULL,
            *row = malloc((4 + 2 * nf) * sizeof *row);
     int rc = mean && row && (!errors || (sd && count))
                  ? mimas_average_fields(avg, mean, sd, count) : -1;
@@ -206,9 +207,9 @@ static int write_rows(cli_table *t, const mimas_average *avg, int grid_none,
         else if (gridded >= 2 && idx[fast] == g->n[fast] - 1)
             cli_table_block_end(t, 0);
     }
-    free(mean);
-    free(sd);
-    free(count);
+    mimas_big_free(mean);
+    mimas_big_free(sd);
+    mimas_big_free(count);
     free(row);
     return rc || ferror(t->fp) ? -1 : 0;
 }
