@@ -414,19 +414,21 @@ void mimas_box_min_image_shift(const mimas_box *b, double d[3], double k[3])
 {
     double L[3] = {b->hi[0] - b->lo[0], b->hi[1] - b->lo[1], b->hi[2] - b->lo[2]};
     k[0] = k[1] = k[2] = 0;
-    /* z, then y, then x: the tilt couples each axis to the ones below it */
-    if (b->periodic[2]) {
+    /* z, then y, then x: the tilt couples each axis to the ones below it.  Within half a
+     * period along an axis its shift is 0 (|d / L| <= 1/2, which rounds to 0, ties to even),
+     * and d stays as it is: the division and the rounding only where it is not. */
+    if (b->periodic[2] && !(fabs(d[2]) <= 0.5 * L[2])) {
         k[2] = nearbyint(d[2] / L[2]);
         d[2] -= k[2] * L[2];
         d[1] -= k[2] * b->yz;
         d[0] -= k[2] * b->xz;
     }
-    if (b->periodic[1]) {
+    if (b->periodic[1] && !(fabs(d[1]) <= 0.5 * L[1])) {
         k[1] = nearbyint(d[1] / L[1]);
         d[1] -= k[1] * L[1];
         d[0] -= k[1] * b->xy;
     }
-    if (b->periodic[0]) {
+    if (b->periodic[0] && !(fabs(d[0]) <= 0.5 * L[0])) {
         k[0] = nearbyint(d[0] / L[0]);
         d[0] -= k[0] * L[0];
     }

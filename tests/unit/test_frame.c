@@ -1,6 +1,7 @@
 /* Data model: generic table operations, the id map and box geometry. */
 #include <config.h>
 
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -201,6 +202,64 @@ static void test_box_equal(void **state)
     assert_false(mimas_box_equal(&a, &b));
 }
 
+/* The minimum image against its definition (LAMMPS' convention): d' = d - k_z e_z - k_y e_y -
+ * k_x e_x with whole k, each component of d' within half a period of its axis after the
+ * shifts of the axes above it (z, then y, then x), no shift along an axis that is not
+ * periodic; a component already within half a period (its boundary included) keeps its
+ * bits.  Orthogonal and tilted boxes, every subset of periodic axes, differences up to three
+ * periods, on and just past the half periods. */
+static void test_min_image(void **state)
+{
+    (void)state;
+    const double tilts[2][3] = {{0, 0, 0}, {0.31, -0.27, 0.45}};
+    unsigned long long seed = 88172645463325252ULL;
+    for (int t = 0; t < 2; t++)
+        for (int per = 0; per < 8; per++) {
+            mimas_box b = {{-0.2, 0.1, -1.0}, {0.9, 1.4, 0.6}, 0, 0, 0, {0, 0, 0}};
+            b.xy = tilts[t][0], b.xz = tilts[t][1], b.yz = tilts[t][2];
+            for (int a = 0; a < 3; a++)
+                b.periodic[a] = (per >> a) & 1;
+            double L[3], e[3][3];
+            mimas_box_edges(&b, e);
+            for (int a = 0; a < 3; a++)
+                L[a] = b.hi[a] - b.lo[a];
+            for (int n = 0; n < 400; n++) {
+                double d[3], d0[3];
+                for (int a = 0; a < 3; a++) {
+                    seed ^= seed << 13, seed ^= seed >> 7, seed ^= seed << 17;
+                    double u = (double)(seed >> 11) / 9007199254740992.0; /* [0, 1) */
+                    d[a] = (6.0 * u - 3.0) * L[a];
+                    if (n % 5 == 1) /* on a half period, or just past it */
+                        d[a] = (n % 2 ? -0.5 : 0.5) * L[a];
+                    else if (n % 5 == 2)
+                        d[a] = nextafter(0.5 * L[a], 1.0) * (n % 2 ? -1 : 1);
+                    d0[a] = d[a];
+                }
+                double k[3];
+                mimas_box_min_image_shift(&b, d, k);
+                double want[3] = {d0[0], d0[1], d0[2]};
+                for (int a = 2; a >= 0; a--) {
+                    assert_true(k[a] == nearbyint(k[a]));
+                    if (!b.periodic[a])
+                        assert_true(k[a] == 0.0);
+                    for (int c = 0; c < 3; c++)
+                        want[c] -= k[a] * e[a][c];
+                }
+                for (int a = 0; a < 3; a++) {
+                    assert_true(fabs(d[a] - want[a]) <= 1e-12 * 4.0 * L[a]);
+                    if (b.periodic[a])
+                        assert_true(fabs(d[a]) <= 0.5 * L[a] * (1 + 1e-12));
+                }
+                /* a component within half a period, with no shift from the axes above it
+                 * (they shift it by their tilt), is left as it was, to the bit */
+                if (k[2] == 0.0 && fabs(d0[2]) <= 0.5 * L[2])
+                    assert_true(d[2] == d0[2]);
+                if (k[2] == 0.0 && fabs(d0[1]) <= 0.5 * L[1])
+                    assert_true(d[1] == d0[1]);
+            }
+        }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -212,6 +271,7 @@ int main(void)
         cmocka_unit_test(test_box_geometry),
         cmocka_unit_test(test_gas_grid),
         cmocka_unit_test(test_box_equal),
+        cmocka_unit_test(test_min_image),
     };
     return cmocka_run_group_tests_name("frame", tests, NULL, NULL);
 }
