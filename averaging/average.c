@@ -666,6 +666,11 @@ int mimas_average_add(mimas_average *a, const mimas_frame *f, mimas_error *err)
     return MIMAS_OK;
 }
 
+size_t mimas_average_sums_count(void)
+{
+    return NSUMS;
+}
+
 void mimas_average_sums(const mimas_average *a, size_t cell, double *sums)
 {
     for (int k = 0; k < NSUMS; k++)

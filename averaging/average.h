@@ -46,8 +46,10 @@ const mimas_weight *mimas_average_weight(const mimas_average *a);
  * (sd, count may be NULL; the strain-rate fields have none).  Returns 0 (it
  * needs no memory of its own; -1 was once out of memory). */
 int mimas_average_fields(const mimas_average *a, double *fields, double *sd, double *count);
-/* The time-averaged primary sums of a cell (NSUMS values, fields.h). */
+/* The time-averaged primary sums of a cell: mimas_average_sums_count() values, in the
+ * library's own layout, which may change between versions (docs/api.md: use the fields). */
 void mimas_average_sums(const mimas_average *a, size_t cell, double *sums);
+size_t mimas_average_sums_count(void);
 /* The accumulated state (frames, primary sums, per-frame statistics) as
  * bytes, and merging such a state into an average of the same options: for
  * runs split over processes (frames in any order: sums add, the per-frame

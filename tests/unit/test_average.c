@@ -90,8 +90,12 @@ static void check_stress_identity(const char *atoms, const char *pgl)
     double scale = max_abs(T, 9);
     assert_true(scale > 0);
     mimas_average *a = average_frame(&f, "none", "bins");
-    double S[NSUMS];
+    double S[NSUMS + 1];
+    /* the count callers size their buffer by, and no value written past it */
+    assert_int_equal(mimas_average_sums_count(), NSUMS);
+    S[NSUMS] = -12345.0;
     mimas_average_sums(a, 0, S);
+    assert_true(S[NSUMS] == -12345.0);
     for (int k = 0; k < 9; k++)
         assert_close(S[S_C + k] * V, T[k], 1e-12 * scale);
     mimas_average_free(a);
