@@ -43,8 +43,8 @@ const mimas_weight *mimas_average_weight(const mimas_average *a);
 /* Time-averaged fields of every cell (cells x mimas_fields_count() values,
  * cell-major), and if the average keeps the spread, the standard deviation
  * over frames and the number of frames in which each field was defined
- * (sd, count may be NULL; the strain-rate fields have none).  Returns 0 (it
- * needs no memory of its own; -1 was once out of memory). */
+ * (sd, count may be NULL; the strain-rate fields have none).  Returns 0: it
+ * needs no memory of its own (before 2026-12 it could return -1, out of memory). */
 int mimas_average_fields(const mimas_average *a, double *fields, double *sd, double *count);
 /* The time-averaged primary sums of a cell: mimas_average_sums_count() values, in the
  * library's own layout, which may change between versions (docs/api.md: use the fields). */

@@ -1,7 +1,7 @@
 /* Large zeroed arrays in huge pages where the kernel offers them (big_alloc.h).  Each array
  * is preceded by a 64-byte header that says how to free it: the mapping's start and length
- * (mapped from the kernel), or the start of the heap block (small arrays, and where mmap is
- * not available). */
+ * (mapped from the kernel), or the start of the heap block (small arrays, arrays under
+ * AddressSanitizer, and where mmap is not available). */
 #include <config.h>
 
 #include "big_alloc.h"
@@ -15,17 +15,31 @@
 
 enum { HUGE_PAGE = 2 << 20, HEAD = 64 };
 
+/* Under AddressSanitizer every array is a heap block, which it guards (it does not see into
+ * mappings of the program's own) */
+#if defined(__SANITIZE_ADDRESS__)
+#define BIG_MAP 0
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define BIG_MAP 0
+#endif
+#endif
+#ifndef BIG_MAP
+#define BIG_MAP 1
+#endif
+
 typedef struct big_head {
     void *base;  /* the mapping, or the heap block */
     size_t len;  /* the mapping's length; 0: a heap block */
 } big_head;
 
-static void *heap_calloc(size_t bytes)
+/* A heap block: the array at `align` past the block's start (the header just before it) */
+static void *heap_calloc(size_t bytes, size_t align)
 {
     void *base = NULL;
-    if (bytes > SIZE_MAX - HEAD || posix_memalign(&base, HEAD, HEAD + bytes))
+    if (bytes > SIZE_MAX - align || posix_memalign(&base, align, align + bytes))
         return NULL;
-    char *p = (char *)base + HEAD;
+    char *p = (char *)base + align;
     memset(p, 0, bytes);
     big_head h = {base, 0};
     memcpy(p - HEAD, &h, sizeof h);
@@ -38,7 +52,7 @@ void *mimas_big_calloc(size_t n, size_t size)
         return NULL;
     size_t bytes = n * size;
 #if defined(__linux__) && defined(MAP_ANONYMOUS)
-    if (bytes >= HUGE_PAGE && bytes <= SIZE_MAX / 2) {
+    if (BIG_MAP && bytes >= HUGE_PAGE && bytes <= SIZE_MAX / 2) {
         /* the array from the first 2 MB boundary past the header; the pages of the
          * mapping before it and after its end are never touched (address space only) */
         size_t rounded = (bytes + HUGE_PAGE - 1) / HUGE_PAGE * HUGE_PAGE;
@@ -57,7 +71,7 @@ void *mimas_big_calloc(size_t n, size_t size)
         return p;
     }
 #endif
-    return heap_calloc(bytes);
+    return heap_calloc(bytes, bytes >= HUGE_PAGE ? HUGE_PAGE : HEAD);
 }
 
 void mimas_big_free(void *p)

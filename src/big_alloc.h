@@ -3,7 +3,8 @@
  * 2 MB boundary and are advised for transparent huge pages: where the kernel offers them
  * on request (its "madvise" mode, or "always"), it takes one page fault per 2 MB that the
  * array first touches, not one per 4 kB, and its fresh pages are zero without a pass of
- * the program's own (docs/performance.md, "Memory"). */
+ * the program's own (docs/performance.md, "Memory").  Under AddressSanitizer they are
+ * heap blocks, which it guards. */
 #ifndef MIMAS_BIG_ALLOC_H
 #define MIMAS_BIG_ALLOC_H
 

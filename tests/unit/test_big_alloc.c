@@ -84,6 +84,13 @@ static void vm_flags_of(const void *p, char *flags, size_t cap)
 static void test_huge_page_advice(void **state)
 {
     (void)state;
+#if defined(__SANITIZE_ADDRESS__)
+    skip(); /* under AddressSanitizer the arrays are heap blocks it guards */
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+    skip();
+#endif
+#endif
     FILE *fp = fopen("/sys/kernel/mm/transparent_hugepage/enabled", "r");
     if (!fp)
         skip(); /* a kernel without transparent huge pages: nothing to advise */
