@@ -84,23 +84,30 @@ static void vm_flags_of(const void *p, char *flags, size_t cap)
 static void test_huge_page_advice(void **state)
 {
     (void)state;
+    /* the flag where the kernel has transparent huge pages; under AddressSanitizer the
+     * arrays are heap blocks, which it guards, and have none */
+    int advised = 1;
 #if defined(__SANITIZE_ADDRESS__)
-    skip(); /* under AddressSanitizer the arrays are heap blocks it guards */
+    advised = 0;
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
-    skip();
+    advised = 0;
 #endif
 #endif
     FILE *fp = fopen("/sys/kernel/mm/transparent_hugepage/enabled", "r");
-    if (!fp)
-        skip(); /* a kernel without transparent huge pages: nothing to advise */
-    fclose(fp);
+    if (fp)
+        fclose(fp);
+    else
+        advised = 0; /* a kernel without them refuses the advice */
     unsigned char *big = mimas_big_calloc(6 * MB, 1), *small = mimas_big_calloc(MB, 1);
     assert_non_null(big);
     assert_non_null(small);
     char flags[512];
     vm_flags_of(big, flags, sizeof flags);
-    assert_non_null(strstr(flags, " hg")); /* MADV_HUGEPAGE */
+    if (advised)
+        assert_non_null(strstr(flags, " hg")); /* MADV_HUGEPAGE */
+    else
+        assert_null(strstr(flags, " hg"));
     vm_flags_of(small, flags, sizeof flags);
     assert_null(strstr(flags, " hg"));
     mimas_big_free(big);
