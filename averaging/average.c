@@ -167,6 +167,11 @@ int mimas_average_grid_none(const mimas_average *a)
     return a->opt.grid_none;
 }
 
+int mimas_average_threads(const mimas_average *a)
+{
+    return a->threads;
+}
+
 const mimas_weight *mimas_average_weight(const mimas_average *a)
 {
     return &a->opt.weight;

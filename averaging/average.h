@@ -39,6 +39,8 @@ size_t mimas_average_frames(const mimas_average *a);
 const mimas_grid *mimas_average_grid(const mimas_average *a);
 /* 1 for --grid none (one cell: the box). */
 int mimas_average_grid_none(const mimas_average *a);
+/* The threads the average deposits with (its options' threads, or OpenMP's default) */
+int mimas_average_threads(const mimas_average *a);
 const mimas_weight *mimas_average_weight(const mimas_average *a);
 /* Time-averaged fields of every cell (cells x mimas_fields_count() values,
  * cell-major), and if the average keeps the spread, the standard deviation

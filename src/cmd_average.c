@@ -151,66 +151,143 @@ static void write_header(cli_table *t, const mimas_grid *g, int grid_none, int c
     cli_table_header_end(t);
 }
 
+/* What the rows of a table are made from (write_rows) */
+typedef struct row_source {
+    const mimas_grid *g;
+    int grid_none, errors, gridded, fast; /* fast: the fastest gridded direction */
+    size_t cells, nf;
+    const unsigned char *want;
+    const double *mean, *sd, *count;
+    const mimas_frame *frame;
+} row_source;
+
+/* The row of one cell, row[] room for its numbers */
+static void put_row(cli_table *t, const row_source *rs, size_t cell, double *row)
+{
+    const mimas_grid *g = rs->g;
+    size_t nf = rs->nf, nr = 0;
+    double ctr[3];
+    if (!rs->grid_none)
+        mimas_grid_cell_centre(g, cell, ctr);
+    if (rs->frame) {
+        cli_table_int(t, (long long)rs->frame->step);
+        row[nr++] = rs->frame->time;
+    }
+    for (int d = 0; d < 3 && !rs->grid_none; d++)
+        if (g->gridded[d])
+            row[nr++] = ctr[d];
+    const double *m = &rs->mean[cell * nf], *s = rs->errors ? &rs->sd[cell * nf] : NULL,
+                 *n = rs->errors ? &rs->count[cell * nf] : NULL;
+    for (size_t k = 0; k < nf; k++) {
+        if (!rs->want[k])
+            continue;
+        row[nr++] = m[k];
+        if (rs->errors)
+            row[nr++] = n[k] > 1 ? s[k] / sqrt(n[k]) : NAN;
+    }
+    cli_table_doubles(t, row, nr);
+    cli_table_row_end(t);
+    int idx[3] = {0, 0, 0};
+    if (!rs->grid_none)
+        mimas_grid_unindex(g, cell, idx);
+    int last = cell + 1 == rs->cells;
+    if (rs->frame && last)
+        cli_table_block_end(t, 1);
+    else if (rs->gridded >= 2 && idx[rs->fast] == g->n[rs->fast] - 1)
+        cli_table_block_end(t, 0);
+}
+
+/* Rows [c0, c1) into a text of their own (*text, *len: open_memstream's, freed by the
+ * caller); -1 when out of memory */
+static int rows_to_text(const cli_table *t, const row_source *rs, size_t c0, size_t c1,
+                        char **text, size_t *len)
+{
+    *text = NULL;
+    *len = 0;
+    FILE *fp = open_memstream(text, len);
+    double *row = malloc((4 + 2 * rs->nf) * sizeof *row);
+    cli_table *tt = malloc(sizeof *tt);
+    if (fp && row && tt) {
+        cli_table_start(tt, fp, &t->o);
+        for (size_t cell = c0; cell < c1; cell++)
+            put_row(tt, rs, cell, row);
+    }
+    int bad = !fp || !row || !tt || ferror(fp);
+    if (fp && fclose(fp))
+        bad = 1;
+    free(row);
+    free(tt);
+    return bad ? -1 : 0;
+}
+
+/* The rows a thread formats at a time: the threads format their runs of rows side by side,
+ * each into a text of its own, and the texts are written in order (the same bytes as one
+ * thread's), a round of threads x ROW_RUN rows at a time */
+#define ROW_RUN 2048
+
+static int put_rows(cli_table *t, const row_source *rs, int threads)
+{
+    if (threads > 1 && rs->cells > ROW_RUN) {
+#ifdef _OPENMP
+        char *text[64];
+        size_t len[64];
+        int nt = threads < 64 ? threads : 64, bad = 0;
+        for (size_t start = 0; start < rs->cells && !bad; start += (size_t)nt * ROW_RUN) {
+#pragma omp parallel for num_threads(nt) schedule(static, 1) reduction(| : bad)
+            for (int u = 0; u < nt; u++) {
+                size_t c0 = start + (size_t)u * ROW_RUN, c1 = c0 + ROW_RUN;
+                c0 = c0 < rs->cells ? c0 : rs->cells;
+                c1 = c1 < rs->cells ? c1 : rs->cells;
+                bad |= rows_to_text(t, rs, c0, c1, &text[u], &len[u]);
+            }
+            for (int u = 0; u < nt; u++) {
+                if (!bad && len[u] && fwrite(text[u], 1, len[u], t->fp) != len[u])
+                    bad = 1;
+                free(text[u]);
+            }
+        }
+        return bad ? -1 : 0;
+#endif
+    }
+    double *row = malloc((4 + 2 * rs->nf) * sizeof *row);
+    if (!row)
+        return -1;
+    for (size_t cell = 0; cell < rs->cells; cell++)
+        put_row(t, rs, cell, row);
+    free(row);
+    return 0;
+}
+
 /* One row per cell ("nan" where a field is undefined, docs/fields.md); with
  * frame (not NULL) the rows start with its step and time.  With blocks, a
  * blank line ends each row of a grid with two or more gridded directions,
- * and two end each frame. */
+ * and two end each frame.  The numbers of large tables are formatted by the
+ * average's threads (put_rows). */
 static int write_rows(cli_table *t, const mimas_average *avg, int grid_none,
                       const unsigned char *want, int errors, const mimas_frame *frame)
 {
     const mimas_grid *g = mimas_average_grid(avg);
-    size_t nf = mimas_fields_count();
-    size_t cells = grid_none ? 1 : mimas_grid_cells(g);
-    int fast = -1, gridded = 0;  /* the fastest gridded direction */
+    row_source rs = {g, grid_none, errors, 0, -1, grid_none ? 1 : mimas_grid_cells(g),
+                     mimas_fields_count(), want, NULL, NULL, NULL, frame};
     for (int d = 0; d < 3 && !grid_none; d++)
         if (g->gridded[d]) {
-            gridded++;
-            if (fast < 0)
-                fast = d;
+            rs.gridded++;
+            if (rs.fast < 0)
+                rs.fast = d;
         }
-    /* the spread only for --errors; a row's numbers gathered for one cli_table_doubles */
+    /* the spread only for --errors */
+    size_t cells = rs.cells, nf = rs.nf;
     double *mean = mimas_big_calloc(cells * nf, sizeof *mean),
            *sd = errors ? mimas_big_calloc(cells * nf, sizeof *sd) : NULL,
-           *count = errors ? mimas_big_calloc(cells * nf, sizeof *count) : NULL,
-           *row = malloc((4 + 2 * nf) * sizeof *row);
-    int rc = mean && row && (!errors || (sd && count))
-                 ? mimas_average_fields(avg, mean, sd, count) : -1;
-    for (size_t cell = 0; !rc && cell < cells; cell++) {
-        double ctr[3];
-        size_t nr = 0;
-        if (!grid_none)
-            mimas_grid_cell_centre(g, cell, ctr);
-        if (frame) {
-            cli_table_int(t, (long long)frame->step);
-            row[nr++] = frame->time;
-        }
-        for (int d = 0; d < 3 && !grid_none; d++)
-            if (g->gridded[d])
-                row[nr++] = ctr[d];
-        const double *m = &mean[cell * nf], *s = errors ? &sd[cell * nf] : NULL,
-                     *n = errors ? &count[cell * nf] : NULL;
-        for (size_t k = 0; k < nf; k++) {
-            if (!want[k])
-                continue;
-            row[nr++] = m[k];
-            if (errors)
-                row[nr++] = n[k] > 1 ? s[k] / sqrt(n[k]) : NAN;
-        }
-        cli_table_doubles(t, row, nr);
-        cli_table_row_end(t);
-        int idx[3] = {0, 0, 0};
-        if (!grid_none)
-            mimas_grid_unindex(g, cell, idx);
-        int last = cell + 1 == cells;
-        if (frame && last)
-            cli_table_block_end(t, 1);
-        else if (gridded >= 2 && idx[fast] == g->n[fast] - 1)
-            cli_table_block_end(t, 0);
-    }
+           *count = errors ? mimas_big_calloc(cells * nf, sizeof *count) : NULL;
+    int rc = mean && (!errors || (sd && count)) ? mimas_average_fields(avg, mean, sd, count)
+                                                : -1;
+    rs.mean = mean, rs.sd = sd, rs.count = count;
+    if (!rc)
+        rc = put_rows(t, &rs, mimas_average_threads(avg));
     mimas_big_free(mean);
     mimas_big_free(sd);
     mimas_big_free(count);
-    free(row);
     return rc || ferror(t->fp) ? -1 : 0;
 }
 
