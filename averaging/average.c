@@ -678,8 +678,18 @@ size_t mimas_average_sums_count(void)
 
 void mimas_average_sums(const mimas_average *a, size_t cell, double *sums)
 {
+    const double *s = &a->sum[cell * NSUMS];
+    size_t n = a->frames;
+    if (n && !(n & (n - 1))) {
+        /* a power of two (one frame among them): its reciprocal is exact, and the product
+         * is the quotient to the bit, without the divisions */
+        double r = 1.0 / (double)n;
+        for (int k = 0; k < NSUMS; k++)
+            sums[k] = s[k] * r;
+        return;
+    }
     for (int k = 0; k < NSUMS; k++)
-        sums[k] = a->frames ? a->sum[cell * NSUMS + k] / (double)a->frames : 0.0;
+        sums[k] = n ? s[k] / (double)n : 0.0;
 }
 
 /* d V_a / d x_b of a cell: analytic for the Gaussian on Cartesian grids

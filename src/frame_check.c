@@ -84,19 +84,28 @@ static int check_pairs(const void *tab, const mimas_table_desc *d, size_t np, mi
         if (!(present & col->bit))
             continue;
         const void *a = mimas_table_column(tab, d, c);
-        for (size_t k = 0; k < n; k++) {
-            if (col->type == MIMAS_T_INDEX && ((const size_t *)a)[k] >= np)
-                return mimas_error_set(err, MIMAS_EDATA, "%s row %zu: %s refers to row %zu of "
-                                       "%zu particles", d->name, k, col->name,
-                                       ((const size_t *)a)[k], np);
-            if (col->type != MIMAS_T_F64)
-                continue;
-            for (int m = 0; m < col->ncomp; m++) {
-                double v = ((const double *)a)[k * (size_t)col->ncomp + (size_t)m];
-                if (!isfinite(v))
+        /* a column at a time, the common case (nothing wrong) a loop without exits; the
+         * first bad row, if any, found again for the message */
+        if (col->type == MIMAS_T_INDEX) {
+            const size_t *ix = a;
+            size_t worst = 0;
+            for (size_t k = 0; k < n; k++)
+                worst = ix[k] > worst ? ix[k] : worst;
+            for (size_t k = 0; n && worst >= np && k < n; k++)
+                if (ix[k] >= np)
+                    return mimas_error_set(err, MIMAS_EDATA, "%s row %zu: %s refers to row "
+                                           "%zu of %zu particles", d->name, k, col->name,
+                                           ix[k], np);
+        } else if (col->type == MIMAS_T_F64) {
+            const double *v = a;
+            size_t m = n * (size_t)col->ncomp;
+            int bad = 0;
+            for (size_t q = 0; q < m; q++)
+                bad |= !isfinite(v[q]);
+            for (size_t q = 0; bad && q < m; q++)
+                if (!isfinite(v[q]))
                     return mimas_error_set(err, MIMAS_EDATA, "%s row %zu: %s is %g", d->name,
-                                           k, col->name, v);
-            }
+                                           q / (size_t)col->ncomp, col->name, v[q]);
         }
     }
     return MIMAS_OK;

@@ -11,6 +11,7 @@
 
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_rng.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -240,6 +241,48 @@ static double (*cubic_lattice(int m, double a, size_t *n))[3]
 
 /* Simple cubic packing of touching spheres (R = a/2): nu = pi/6 in every cell
  * whose edges are whole multiples of a, wherever the cell edges cut. */
+/* The time average of n frames is the sum over them divided by n, to the bit, whether n is
+ * a power of two (the reciprocal's product) or not (the quotient): against the sums in
+ * the average's packed state (frames, grid, then the cells' sums) divided here; and of n
+ * copies of one frame, that frame's sums to a few ulp. */
+static void test_sums_over_frames(void **state)
+{
+    (void)state;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    last_frame(data("periodic_box/dump.periodic.atom.gz"),
+               data("periodic_box/dump.periodic.pgl.gz"), &f);
+    const char *grid = "x=0:0.0293135:4,y=0:0.0293135:3,z=0:0.0293135:3";
+    mimas_average *one = average_frame(&f, grid, "gauss:w=0.004");
+    size_t cells = mimas_grid_cells(mimas_average_grid(one));
+    mimas_bytes packed = {0};
+    mimas_error err;
+    for (int n = 1; n <= 8; n++) {
+        mimas_average *a = average_frame(&f, grid, "gauss:w=0.004");
+        for (int k = 1; k < n; k++) {
+            f.step++; /* another frame, the same particles */
+            assert_int_equal(mimas_average_add(a, &f, &err), MIMAS_OK);
+        }
+        assert_int_equal(mimas_average_pack(a, &packed, &err), MIMAS_OK);
+        const unsigned char *raw = packed.data + sizeof(uint64_t) + sizeof(mimas_grid);
+        for (size_t c = 0; c < cells; c++) {
+            double S1[NSUMS], Sn[NSUMS];
+            mimas_average_sums(one, c, S1);
+            mimas_average_sums(a, c, Sn);
+            for (int k = 0; k < NSUMS; k++) {
+                double sum;
+                memcpy(&sum, raw + (c * NSUMS + (size_t)k) * sizeof sum, sizeof sum);
+                assert_true(Sn[k] == sum / n);
+                assert_true(fabs(Sn[k] - S1[k]) <= 8 * DBL_EPSILON * fabs(S1[k]));
+            }
+        }
+        mimas_average_free(a);
+    }
+    mimas_bytes_free(&packed);
+    mimas_average_free(one);
+    mimas_frame_free(&f);
+}
+
 static void test_simple_cubic_solid_fraction(void **state)
 {
     (void)state;
@@ -1002,6 +1045,7 @@ int main(void)
         cmocka_unit_test(test_stress_identity_triclinic),
         cmocka_unit_test(test_stress_identity_periodic),
         cmocka_unit_test(test_matches_liggghts_stress_atom),
+        cmocka_unit_test(test_sums_over_frames),
         cmocka_unit_test(test_simple_cubic_solid_fraction),
         cmocka_unit_test(test_gauss_integrates_mass),
         cmocka_unit_test(test_gauss_profile_is_marginal),

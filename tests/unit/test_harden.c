@@ -124,6 +124,32 @@ static void test_frame_check(void **state)
     f.contacts.j[0] = 5;
     assert_int_equal(mimas_frame_check(&f, &err), MIMAS_EDATA);
     assert_string_equal(err.msg, "contacts row 0: j refers to row 5 of 1 particles");
+    /* the first bad row of several, in the column checked first (the indices) */
+    assert_int_equal(mimas_table_set_present(&f.contacts, &mimas_contacts_desc, MIMAS_C_FORCE,
+                                             &err), MIMAS_OK);
+    assert_int_equal(mimas_table_resize(&f.contacts, &mimas_contacts_desc, 5, &err), MIMAS_OK);
+    for (size_t k = 0; k < 5; k++) {
+        f.contacts.i[k] = f.contacts.j[k] = 0;
+        for (int d = 0; d < 3; d++)
+            f.contacts.force[k][d] = 1.0;
+    }
+    f.contacts.j[3] = 7;
+    f.contacts.i[4] = 9;
+    f.contacts.force[2][1] = NAN;
+    assert_int_equal(mimas_frame_check(&f, &err), MIMAS_EDATA);
+    assert_string_equal(err.msg, "contacts row 4: i refers to row 9 of 1 particles");
+    f.contacts.i[4] = 0;
+    assert_int_equal(mimas_frame_check(&f, &err), MIMAS_EDATA);
+    assert_string_equal(err.msg, "contacts row 3: j refers to row 7 of 1 particles");
+    f.contacts.j[3] = 0;
+    assert_int_equal(mimas_frame_check(&f, &err), MIMAS_EDATA);
+    assert_string_equal(err.msg, "contacts row 2: force is nan");
+    f.contacts.force[2][1] = -INFINITY;
+    assert_int_equal(mimas_frame_check(&f, &err), MIMAS_EDATA);
+    assert_string_equal(err.msg, "contacts row 2: force is -inf");
+    f.contacts.force[2][1] = 1.0;
+    assert_int_equal(mimas_frame_check(&f, &err), MIMAS_OK);
+    assert_int_equal(mimas_table_resize(&f.contacts, &mimas_contacts_desc, 1, &err), MIMAS_OK);
     f.time = INFINITY;
     f.contacts.j[0] = 0;
     assert_int_equal(mimas_frame_check(&f, &err), MIMAS_EDATA);
