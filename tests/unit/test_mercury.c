@@ -521,6 +521,10 @@ static void test_bad_data(void **state)
      * once made the value counting loop forever) */
     expect_data_error("cr.data", "1 0 0 0 0 1 1 1\n0.1 0.2 0.3 0 0 0 0.05 0 0 0 0 0 0 0 9\r9\n",
                       2, "has 16 values");
+    /* tabs, vertical tabs and form feeds separate values as spaces do, runs of them too */
+    expect_data_error("ws.data",
+                      "1 0 0 0 0 1 1 1\n0.1\t0.2 \v0.3\f\f0 0 0 0.05 0 0 0 0 0 0 0 9 9\n", 2,
+                      "has 16 values");
     expect_data_error("nan.data", "1 0 0 0 0 1 1 1\n0.1 0.2 nan 0 0 0 0.05 0 0 0 0 0 0 0\n", 2,
                       "value 3 ('nan')");
     expect_data_error("inf.data", "1 inf 0 0 0 1 1 1\n" R3, 1, "value 2 ('inf')");
