@@ -53,8 +53,8 @@ void *mimas_big_calloc(size_t n, size_t size)
     size_t bytes = n * size;
 #if defined(__linux__) && defined(MAP_ANONYMOUS)
     if (BIG_MAP && bytes >= HUGE_PAGE && bytes <= SIZE_MAX / 2) {
-        /* the array from the first 2 MB boundary past the header; the pages of the
-         * mapping before it and after its end are never touched (address space only) */
+        /* the array from the first 2 MB boundary past the header; of the mapping's pages
+         * before it only the header's is touched, after its end none (address space only) */
         size_t rounded = (bytes + HUGE_PAGE - 1) / HUGE_PAGE * HUGE_PAGE;
         size_t len = rounded + HUGE_PAGE;
         void *base = mmap(NULL, len, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
