@@ -86,8 +86,10 @@ typedef struct merc_state {
     long *row_line;
     double (*row_n)[3];
     unsigned char *drop;
-    pair_key *keys;
+    pair_key *keys, *sorted;  /* the pair keys, and room to sort them into */
     size_t row_cap;
+    size_t *bucket;            /* the counting sort's start of each particle's keys */
+    size_t bucket_cap;
 } merc_state;
 
 /* ---- small helpers ---------------------------------------------------------- */
@@ -453,7 +455,8 @@ static int reserve_rows(merc_state *s, size_t n, mimas_error *err)
     if (grow_array((void **)&s->row_line, cap, sizeof *s->row_line) ||
         grow_array((void **)&s->row_n, cap, sizeof *s->row_n) ||
         grow_array((void **)&s->drop, cap, sizeof *s->drop) ||
-        grow_array((void **)&s->keys, cap, sizeof *s->keys))
+        grow_array((void **)&s->keys, cap, sizeof *s->keys) ||
+        grow_array((void **)&s->sorted, cap, sizeof *s->sorted))
         return mimas_error_set(err, MIMAS_EIO, "out of memory for the MercuryDPM reader");
     s->row_cap = cap;
     return MIMAS_OK;
@@ -607,9 +610,49 @@ static int check_mirror(merc_state *s, const mimas_contacts *c, size_t a, size_t
     return MIMAS_OK;
 }
 
+/* Sorts the n keys by (lo, hi, row), as qsort with cmp_key would: a counting sort by lo
+ * (stable: the rows stay in order), then each particle's few keys by hi in place (an
+ * insertion sort, which moves no key past another lo); lo < np (the indices were checked
+ * when read; else qsort).  Linear where qsort took n log n comparisons (a quarter of a second's reading
+ * of a 20,000-sphere frame's .fstat). */
+static int sort_keys(merc_state *s, size_t n, size_t np, mimas_error *err)
+{
+    if (np + 1 > s->bucket_cap) {
+        if (grow_array((void **)&s->bucket, np + 1, sizeof *s->bucket))
+            return mimas_error_set(err, MIMAS_EIO, "out of memory for the MercuryDPM reader");
+        s->bucket_cap = np + 1;
+    }
+    for (size_t k = 0; k < n; k++)
+        if (s->keys[k].lo >= np) { /* not expected (checked when read): the general sort */
+            qsort(s->keys, n, sizeof *s->keys, cmp_key);
+            return MIMAS_OK;
+        }
+    size_t *at = s->bucket;
+    memset(at, 0, (np + 1) * sizeof *at);
+    for (size_t k = 0; k < n; k++)
+        at[s->keys[k].lo + 1]++;
+    for (size_t p = 0; p < np; p++)
+        at[p + 1] += at[p];
+    for (size_t k = 0; k < n; k++)
+        s->sorted[at[s->keys[k].lo]++] = s->keys[k];
+    for (size_t k = 1; k < n; k++) {
+        pair_key x = s->sorted[k];
+        size_t m = k;
+        while (m > 0 && cmp_key(&s->sorted[m - 1], &x) > 0) {
+            s->sorted[m] = s->sorted[m - 1];
+            m--;
+        }
+        s->sorted[m] = x;
+    }
+    pair_key *t = s->keys;
+    s->keys = s->sorted;
+    s->sorted = t;
+    return MIMAS_OK;
+}
+
 /* Marks the duplicate row of every pair written from both sides (keeping
- * the row with i < j) after checking that the two agree. */
-static int mark_duplicates(merc_state *s, const mimas_contacts *c, mimas_error *err)
+ * the row with i < j) after checking that the two agree; np particles. */
+static int mark_duplicates(merc_state *s, const mimas_contacts *c, size_t np, mimas_error *err)
 {
     size_t n = c->n;
     if (n == 0)
@@ -619,7 +662,9 @@ static int mark_duplicates(merc_state *s, const mimas_contacts *c, mimas_error *
                                 c->i[k] < c->j[k] ? c->j[k] : c->i[k], k};
         s->drop[k] = 0;
     }
-    qsort(s->keys, n, sizeof *s->keys, cmp_key);
+    int rc = sort_keys(s, n, np, err);
+    if (rc)
+        return rc;
     for (size_t g = 0; g < n;) {
         size_t e = g + 1;
         while (e < n && s->keys[e].lo == s->keys[g].lo && s->keys[e].hi == s->keys[g].hi)
@@ -631,7 +676,7 @@ static int mark_duplicates(merc_state *s, const mimas_contacts *c, mimas_error *
                             s->row_line[s->keys[g].row], s->row_line[s->keys[g + 1].row]);
         if (e - g == 2) {
             size_t a = s->keys[g].row, b = s->keys[g + 1].row;
-            int rc = check_mirror(s, c, a, b, err);
+            rc = check_mirror(s, c, a, b, err);
             if (rc)
                 return rc;
             s->drop[c->i[a] > c->j[a] ? a : b] = 1;
@@ -668,7 +713,7 @@ static void keep_contact(merc_state *s, mimas_frame *f, size_t k, size_t m)
 
 static int finish_block(merc_state *s, mimas_frame *f, mimas_error *err)
 {
-    int rc = mark_duplicates(s, &f->contacts, err);
+    int rc = mark_duplicates(s, &f->contacts, f->particles.n, err);
     if (rc)
         return rc;
     size_t m = 0;
@@ -840,6 +885,8 @@ static void close_stream(void *state)
     free(s->row_n);
     free(s->drop);
     free(s->keys);
+    free(s->sorted);
+    free(s->bucket);
     free(s);
 }
 

@@ -453,6 +453,40 @@ static void expect_fstat_error(const char *name, const char *fstat, long line,
     expect_error(data, path, 0, path, line, fragment);
 }
 
+/* A particle with several partners, the rows of its pairs interleaved (each pair written from
+ * both sides, far apart): every pair found, one contact each, written with i < j, in the
+ * order of their first rows */
+static void test_pairs_interleaved(void **state)
+{
+    (void)state;
+    const char *data = write_text(
+        "three.data", "3 0.5 0 0 0 1 1 1\n" P2 "0.3 0.2 0.3 0 0 0 0.05 0 0 0 0 0 0 0\n");
+    const char *fstat = write_text("three.fstat",
+                                   HDR("0.5") "0.5 0 2 0.3 0.5 0.5 0 0 2 0 -1 0 0 0 0 0\n"
+                                              "0.5 1 0 0.3 0.5 0.5 0 0 1 0 1 0 0 0 0 0\n"
+                                              "0.5 2 1 0.3 0.5 0.5 0 0 3 0 1 0 0 0 0 0\n"
+                                              "0.5 2 0 0.3 0.5 0.5 0 0 2 0 1 0 0 0 0 0\n"
+                                              "0.5 0 1 0.3 0.5 0.5 0 0 1 0 -1 0 0 0 0 0\n"
+                                              "0.5 1 2 0.3 0.5 0.5 0 0 3 0 -1 0 0 0 0 0\n");
+    const char *d[1] = {data}, *c[1] = {fstat};
+    void *st;
+    mimas_error err;
+    mimas_frame f;
+    mimas_frame_init(&f);
+    if (open_mercury(&st, d, 1, c, 1, 0.0, 0, &err))
+        fail_msg("open: %s", err.msg);
+    if (reader_mercury.next(st, &f, &err))
+        fail_msg("next: %s", err.msg);
+    assert_int_equal(f.contacts.n, 3);
+    const size_t want[3][2] = {{0, 2}, {0, 1}, {1, 2}};
+    for (size_t k = 0; k < 3; k++) {
+        assert_int_equal(f.contacts.i[k], want[k][0]);
+        assert_int_equal(f.contacts.j[k], want[k][1]);
+    }
+    reader_mercury.close(st);
+    mimas_frame_free(&f);
+}
+
 static void test_bad_contacts(void **state)
 {
     (void)state;
@@ -473,6 +507,20 @@ static void test_bad_contacts(void **state)
                        5, "disagree (this line and line 4): normal force");
     expect_fstat_error("side.fstat", HDR("0.5") ROW("0.5") "0.5 0 1 0.3 0.5 0.5 0 0 1 0 -1 0 0 0 0 0\n",
                        6, "third contact row");
+    /* four particles, the rows of two pairs interleaved and a third row of one pair last:
+     * the pairs are found whatever the order of their rows, and the message names the
+     * third row's line and the other two */
+    {
+        const char *four = write_text("four.data", "4 0.5 0 0 0 1 1 1\n" P2 P2);
+        const char *path = write_text("interleaved.fstat",
+                                      HDR("0.5") "0.5 2 3 0.3 0.5 0.5 0 0 1 0 -1 0 0 0 0 0\n"
+                                                 "0.5 0 1 0.3 0.5 0.5 0 0 1 0 -1 0 0 0 0 0\n"
+                                                 "0.5 3 2 0.3 0.5 0.5 0 0 1 0 1 0 0 0 0 0\n"
+                                                 "0.5 1 0 0.3 0.5 0.5 0 0 1 0 1 0 0 0 0 0\n"
+                                                 "0.5 0 1 0.3 0.5 0.5 0 0 1 0 -1 0 0 0 0 0\n");
+        expect_error(four, path, 0, path, 8, "particles 0 and 1 have a third contact row "
+                                             "(lines 5 and 7 have the other two)");
+    }
     expect_fstat_error("twice.fstat",
                        HDR("0.5") "0.5 0 1 0.3 0.5 0.5 0 0 1 0 -1 0 0 0 0 0\n"
                                   "0.5 0 1 0.3 0.5 0.5 0 0 1 0 -1 0 0 0 0 0\n",
@@ -584,6 +632,7 @@ int main(void)
         cmocka_unit_test(test_marker0_contact_points),
         cmocka_unit_test(test_2d_mapping),
         cmocka_unit_test(test_missing_time_steps),
+        cmocka_unit_test(test_pairs_interleaved),
         cmocka_unit_test(test_bad_contacts),
         cmocka_unit_test(test_bad_data),
         cmocka_unit_test(test_options),
