@@ -613,8 +613,8 @@ static int check_mirror(merc_state *s, const mimas_contacts *c, size_t a, size_t
 /* Sorts the n keys by (lo, hi, row), as qsort with cmp_key would: a counting sort by lo
  * (stable: the rows stay in order), then each particle's few keys by hi in place (an
  * insertion sort, which moves no key past another lo); lo < np (the indices were checked
- * when read; else qsort).  Linear where qsort took n log n comparisons (a quarter of a second's reading
- * of a 20,000-sphere frame's .fstat). */
+ * when read; else qsort).  Linear where qsort took n log n comparisons (47e6 instructions
+ * for the 113,000 rows of a 20,000-sphere frame's .fstat). */
 static int sort_keys(merc_state *s, size_t n, size_t np, mimas_error *err)
 {
     if (np + 1 > s->bucket_cap) {
