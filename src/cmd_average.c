@@ -197,25 +197,34 @@ static void put_row(cli_table *t, const row_source *rs, size_t cell, double *row
         cli_table_block_end(t, 0);
 }
 
+/* The rows of cells [c0, c1) into t; -1 when out of memory */
+static int put_range(cli_table *t, const row_source *rs, size_t c0, size_t c1)
+{
+    double *row = malloc((4 + 2 * rs->nf) * sizeof *row);
+    if (!row)
+        return -1;
+    for (size_t cell = c0; cell < c1; cell++)
+        put_row(t, rs, cell, row);
+    free(row);
+    return 0;
+}
+
 /* Rows [c0, c1) into a text of their own (*text, *len: open_memstream's, freed by the
- * caller); -1 when out of memory */
+ * caller), laid out as t lays them out; -1 when out of memory */
 static int rows_to_text(const cli_table *t, const row_source *rs, size_t c0, size_t c1,
                         char **text, size_t *len)
 {
     *text = NULL;
     *len = 0;
     FILE *fp = open_memstream(text, len);
-    double *row = malloc((4 + 2 * rs->nf) * sizeof *row);
     cli_table *tt = malloc(sizeof *tt);
-    if (fp && row && tt) {
+    int bad = !fp || !tt;
+    if (!bad) {
         cli_table_start(tt, fp, &t->o);
-        for (size_t cell = c0; cell < c1; cell++)
-            put_row(tt, rs, cell, row);
+        bad = put_range(tt, rs, c0, c1) || ferror(fp);
     }
-    int bad = !fp || !row || !tt || ferror(fp);
     if (fp && fclose(fp))
         bad = 1;
-    free(row);
     free(tt);
     return bad ? -1 : 0;
 }
@@ -249,13 +258,7 @@ static int put_rows(cli_table *t, const row_source *rs, int threads)
         return bad ? -1 : 0;
 #endif
     }
-    double *row = malloc((4 + 2 * rs->nf) * sizeof *row);
-    if (!row)
-        return -1;
-    for (size_t cell = 0; cell < rs->cells; cell++)
-        put_row(t, rs, cell, row);
-    free(row);
-    return 0;
+    return put_range(t, rs, 0, rs->cells);
 }
 
 /* One row per cell ("nan" where a field is undefined, docs/fields.md); with
