@@ -276,6 +276,7 @@ int mimas_deposit_init(mimas_deposit *dp, const mimas_grid *g, const mimas_weigh
     }
     dp->gauss_rz = dp->kernel && wt->kind != MIMAS_WEIGHT_LUCY &&
                    g->kind != MIMAS_GRID_CARTESIAN && !g->gridded[1] && dp->dims == 3;
+    dp->ring_terms = dp->gauss_rz ? mimas_ring_tier2_terms(wt) : 0;
     /* images along the periodic edge vectors: shifts k_a a + k_b b + k_c c */
     double e[3][3];
     mimas_box_edges(box, e);

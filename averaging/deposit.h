@@ -64,6 +64,8 @@ typedef struct mimas_deposit {
                             * they are integrated over (Cartesian; cylindrical z) */
     int gauss_rz;          /* the plain or shifted Gaussian on an r-z grid: the ring
                             * series cell by cell (deposit_ring.c) */
+    int ring_terms;        /* gauss_rz: the terms of the ring lanes' second tier's series
+                            * for T_{N+1} (0: no second tier) */
     int gauss_xyz;         /* the Gaussian on an x-y-z grid: separable (deposit_gauss.c) */
     double gq[3];          /* e^{-2 h^2 / 2w^2} per direction, for its 1-D factors */
 } mimas_deposit;

@@ -119,6 +119,9 @@ void mimas_gauss_tables(void);
  * (deposit_ring.c); scale multiplies every weight. */
 int mimas_gauss_sphere_rz(const mimas_deposit *dp, const double a[3], int with_grad,
                           double scale, mimas_weights *ws);
+/* The terms the ring lanes' second tier sums for T_{N+1} at wt's largest X (dp->ring_terms;
+ * 0 where the table of 1/(j + 1/2) is too short for them). */
+int mimas_ring_tier2_terms(const mimas_weight *wt);
 int mimas_gauss_segment_rz(const mimas_deposit *dp, const double aa[3], const double ab[3],
                            const double am[3], double reach, double scale, mimas_weights *ws);
 /* The same built for any processor, and (x86-64) with AVX2 and with AVX-512, which

@@ -63,6 +63,31 @@ static int cell_box(const mimas_deposit *dp, const double a[3], double reach, in
 #define RING_LANE_N 10
 #define RING_LANE_Y 0.02
 
+/* The second tier: the lanes the first leaves to ring_value with y <= RING_TIER2_Y, near the
+ * axis (a < 4 (RING_LANE_N + 2)) or with longer arcs, by gauss_ring_series's other way (the
+ * one it takes nearer the axis, for any a and X): T_{N+1} = tail M_{N+3/2}(X) by its series
+ * (dp->ring_terms terms, enough at the weight's largest X, cutoff^2/2), then T_n = (tail +
+ * X T_{n+1})/(n + 1/2) downwards with the sum over n by Horner's rule, N = RING_TIER2_N
+ * fixed (y^{N+1} <= 3.5e-18); the shifted kernel's t_m series the same way.  Lane by lane
+ * the same operations in every build; gauss_ring_series's values to rounding (it stops at
+ * the first y^N below 1e-17 (1 - y)). */
+#define RING_TIER2_Y 0.25
+#define RING_TIER2_N 28
+
+int mimas_ring_tier2_terms(const mimas_weight *wt)
+{
+    double X = 0.5 * wt->cutoff * wt->cutoff, term = ring_inv_half[RING_TIER2_N + 1], T = term;
+    for (int j = RING_TIER2_N + 2; j < RING_NH; j++) {
+        term *= X * ring_inv_half[j];
+        T += term;
+        /* past the largest term and the rest below 1e-18 of the sum (they fall at least by
+         * X/(j + 1/2) < 1/2 each from here) */
+        if (j > RING_TIER2_N + 1 + 2.0 * X && term < 1e-18 * T)
+            return j - (RING_TIER2_N + 1);
+    }
+    return 0;
+}
+
 /* m ? a : b lane by lane (m from a comparison: all ones or zero); whether a lane is set */
 #define RING_SEL(m, a, b) ((RING_VT)(((RING_MT)(a) & (m)) | ((RING_MT)(b) & ~(m))))
 #define RING_ANY(m) (RING_BITS(m) != 0)
@@ -97,6 +122,7 @@ static inline void ring_sqrt_p(const lane_v4 *Y, lane_v4 *r)
 #define RING_TABLE_FN ring_table
 #define RING_REACH_FN ring_reach
 #define RING_LANES_FN ring_lanes
+#define RING_TIER2_FN ring_tier2
 #define RING_CELLS_FN ring_cells
 #define RING_SUM_FN ring_sum
 #define RING_SEG_FN mimas_gauss_segment_rz_portable
@@ -117,6 +143,7 @@ static inline void ring_sqrt_p(const lane_v4 *Y, lane_v4 *r)
 #define RING_TABLE_FN ring_table_avx2
 #define RING_REACH_FN ring_reach_avx2
 #define RING_LANES_FN ring_lanes_avx2
+#define RING_TIER2_FN ring_tier2_avx2
 #define RING_CELLS_FN ring_cells_avx2
 #define RING_SUM_FN ring_sum_avx2
 #define RING_SEG_FN mimas_gauss_segment_rz_avx2
@@ -139,6 +166,7 @@ static inline void ring_sqrt_p(const lane_v4 *Y, lane_v4 *r)
 #define RING_TABLE_FN ring_table_avx512
 #define RING_REACH_FN ring_reach_avx512
 #define RING_LANES_FN ring_lanes_avx512
+#define RING_TIER2_FN ring_tier2_avx512
 #define RING_CELLS_FN ring_cells_avx512
 #define RING_SUM_FN ring_sum_avx512
 #define RING_SEG_FN mimas_gauss_segment_rz_avx512

@@ -52,8 +52,36 @@ static inline int RING_REACH_FN(const mimas_weight *wt, const RING_VT *e, const 
     return 1;
 }
 
+/* The second tier (deposit_ring.c) at RING_W lanes: *V = s0 - 2 shift sa as in
+ * RING_LANES_FN. */
+static inline void RING_TIER2_FN(const mimas_deposit *dp, const RING_VT *X, const RING_VT *Y,
+                                 RING_VT *V)
+{
+    const mimas_weight *wt = dp->wt;
+    RING_VT zero = {0}, term = zero + ring_inv_half[RING_TIER2_N + 1], T = term, s0 = zero;
+    for (int j = RING_TIER2_N + 2; j <= RING_TIER2_N + 1 + dp->ring_terms; j++) {
+        term *= *X * ring_inv_half[j];
+        T += term;
+    }
+    T *= wt->tail;
+    for (int n = RING_TIER2_N; n >= 0; n--) {
+        RING_VT Tn = (wt->tail + *X * T) * ring_inv_half[n];
+        s0 = s0 * *Y + ring_binom[n] * Tn;
+        T = Tn;
+    }
+    *V = s0;
+    if (wt->shift != 0.0) {
+        RING_VT sa = zero;
+        for (int n = RING_TIER2_N; n >= 0; n--)
+            sa = sa * *Y + 0.5 * ring_binom[n] * ring_inv_half[n]; /* c_n/(2n + 1) */
+        *V = s0 - 2.0 * wt->shift * sa;
+    }
+}
+
 /* RING_W branch points for one cell: 0 when none is within reach, else 1 with val their
- * averages (0 for the flagged ones) and *flag the bits of the lanes left to ring_value. */
+ * averages (0 for the flagged ones) and *flag the bits of the lanes left to ring_value
+ * (those of the first tier's flagged with y above RING_TIER2_Y, or all where there is no
+ * second tier). */
 static inline int RING_LANES_FN(const mimas_deposit *dp, const double *dr2, const double *dz,
                                 const double *irr, double norm, double *val, int *flag)
 {
@@ -89,6 +117,15 @@ static inline int RING_LANES_FN(const mimas_deposit *dp, const double *dr2, cons
         V = s0;
     }
     V = RING_SEL(in & ~fl, V, zero);
+    if (dp->ring_terms) {
+        RING_MT f2 = fl & (Y <= RING_TIER2_Y);
+        if (RING_ANY(&f2)) {
+            RING_VT V2;
+            RING_TIER2_FN(dp, &X, &Y, &V2);
+            V = RING_SEL(f2, V2, V);
+            fl &= ~f2;
+        }
+    }
     /* the average: norm sqrt(y) V (sqrt is exact to rounding in vectors too) */
     RING_VT sy;
     RING_SQRT(&Y, &sy);
@@ -321,6 +358,7 @@ int RING_SPHERE_FN(const mimas_deposit *dp, const double a[3], int with_grad, do
 #undef RING_TABLE_FN
 #undef RING_REACH_FN
 #undef RING_LANES_FN
+#undef RING_TIER2_FN
 #undef RING_CELLS_FN
 #undef RING_SUM_FN
 #undef RING_SEG_FN
