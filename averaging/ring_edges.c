@@ -54,38 +54,23 @@ static double quartic(const double c[5], double s, double *d)
     return v;
 }
 
-/* the quartic, its derivative and half its second derivative at s (Horner) */
-static double quartic2(const double c[5], double s, double *d, double *h)
-{
-    double v = c[4], dv = 0.0, hv = 0.0;
-    for (int k = 3; k >= 0; k--) {
-        hv = hv * s + dv;
-        dv = dv * s + v;
-        v = v * s + c[k];
-    }
-    *d = dv;
-    *h = hv;
-    return v;
-}
-
 /* The root in [a, b] where the quartic is monotone and changes sign (fa, fb its values at
- * the ends): Halley's steps (cubic convergence: two or three to 1e-10 from the secant's
- * root) from the secant's root, kept inside the bracket, which each step narrows. */
+ * the ends): Newton's steps from the secant's root, kept inside the bracket, which each
+ * step narrows. */
 static double bracketed_root(const double c[5], double a, double b, double fa, double fb)
 {
     double x = a - fa * (b - a) / (fb - fa);
     if (!(x > a && x < b))
         x = 0.5 * (a + b);
     for (int it = 0; it < 100; it++) {
-        double d, h, f = quartic2(c, x, &d, &h);
+        double d, f = quartic(c, x, &d);
         if (f == 0.0)
             return x;
         if ((f < 0) == (fa < 0))
             a = x;
         else
             b = x;
-        /* x - f/(f' - f f''/2f') = x - f f'/(f'^2 - f h), h = f''/2 */
-        double den = d * d - f * h, next = den != 0.0 ? x - f * d / den : a;
+        double next = d != 0.0 ? x - f / d : a;
         if (!(next > a && next < b))
             next = 0.5 * (a + b);
         /* to 1e-10 of the branch: a split that far from the edge changes the integral by
