@@ -2,7 +2,6 @@
 
 #include "weight.h"
 
-#include <gsl/gsl_integration.h>
 #include <gsl/gsl_sf_bessel.h>
 #include <pthread.h>
 #include <math.h>
@@ -438,8 +437,8 @@ double mimas_kernel_marginal_line(const mimas_weight *wt, int dims, const double
 /* ---- azimuthal averages ------------------------------------------------------------ */
 
 /* The Gauss-Legendre rule in theta on [0, pi/2] for an arc's quadrature (mimas_kernel_ring):
- * 32 points, from GSL's table, with sin and cos of each node, made once.  Its error for the
- * Gaussian's long arcs is below 1e-15 of the peak at cutoffs 2 to 5 (tests/unit/
+ * 32 points (gauss_legendre.h), with sin and cos of each node, made once.  Its error for
+ * the Gaussian's long arcs is below 1e-15 of the peak at cutoffs 2 to 5 (tests/unit/
  * test_deposit_random.c, test_ring_points); 16 points left 5e-12 at cutoff 3 and 7.8e-9 at 5. */
 enum { ARC_NODES = 32 };
 typedef struct arc_node {
@@ -450,14 +449,11 @@ static pthread_once_t arc_once = PTHREAD_ONCE_INIT;
 
 static void arc_setup(void)
 {
-    gsl_integration_glfixed_table *t = gsl_integration_glfixed_table_alloc(ARC_NODES);
     for (int n = 0; n < ARC_NODES; n++) {
-        double th = 0.0, w = 0.0;
-        if (t)
-            gsl_integration_glfixed_point(0.0, 0.5 * M_PI, (size_t)n, &th, &w, t);
+        double th, w;
+        gl_node(gl32_x, gl32_w, ARC_NODES, n, 0.0, 0.5 * M_PI, &th, &w);
         arc_nodes[n] = (arc_node){w, sin(th), cos(th)};
     }
-    gsl_integration_glfixed_table_free(t);
 }
 
 static const arc_node *arc_rule(void)
