@@ -347,6 +347,17 @@ static double ring_reference(int *edges)
     return ring_branch_integral(ring_along, ring_edge, NULL, 4096, 1e-14 * phi(0.0), edges);
 }
 
+/* The segment a -> b deposited, its weights summed into dense (nc cells) */
+static void dense_segment(const mimas_deposit *dp, const double a[3], const double b[3],
+                          mimas_weights *ws, double *dense, size_t nc)
+{
+    ws->n = 0;
+    assert_int_equal(mimas_deposit_segment(dp, a, b, ws), MIMAS_OK);
+    memset(dense, 0, nc * sizeof *dense);
+    for (size_t k = 0; k < ws->n; k++)
+        dense[ws->cell[k]] += ws->w[k];
+}
+
 /* Random branches (up to 1.5 mm, anywhere within 6 mm of the axis, every fifth starting
  * within 0.3 mm of it) on an r-z grid of 0.5 mm cells, the plain Gaussian (w = 1 mm) at
  * cutoffs 2 and 3, against the adaptive integral along the branch of the exact azimuthal
@@ -386,11 +397,7 @@ static void check_ring_branches(double cut, double tol)
         }
         for (int d = 0; d < 3; d++)
             b[d] = a[d] + len * u[d] / sqrt(un);
-        ws.n = 0;
-        assert_int_equal(mimas_deposit_segment(&dp, a, b, &ws), MIMAS_OK);
-        memset(dense, 0, nc * sizeof *dense);
-        for (size_t k = 0; k < ws.n; k++)
-            dense[ws.cell[k]] += ws.w[k];
+        dense_segment(&dp, a, b, &ws, dense, nc);
         for (size_t c = 0; c < nc; c++) {
             double ctr[3];
             mimas_grid_cell_centre(&g, c, ctr);
@@ -481,11 +488,7 @@ static void test_ring_points(void **state)
             double b[3] = {a[0] + len * cos(t + 1), a[1] + len * sin(t + 1), a[2] + 0.5 * len};
             double m[3] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
             double rho_m = hypot(m[0], m[1]);
-            ws.n = 0;
-            assert_int_equal(mimas_deposit_segment(&dp, a, b, &ws), MIMAS_OK);
-            memset(dense, 0, nc * sizeof *dense);
-            for (size_t q = 0; q < ws.n; q++)
-                dense[ws.cell[q]] += ws.w[q];
+            dense_segment(&dp, a, b, &ws, dense, nc);
             for (size_t c = 0; c < nc; c++) {
                 double ctr[3];
                 mimas_grid_cell_centre(&g, c, ctr);
