@@ -239,8 +239,6 @@ static double (*cubic_lattice(int m, double a, size_t *n))[3]
     return pos;
 }
 
-/* Simple cubic packing of touching spheres (R = a/2): nu = pi/6 in every cell
- * whose edges are whole multiples of a, wherever the cell edges cut. */
 /* The time average of n frames is the sum over them divided by n, to the bit, whether n is
  * a power of two (the reciprocal's product) or not (the quotient): against the sums in
  * the average's packed state (frames, grid, then the cells' sums) divided here; and of n
@@ -283,6 +281,8 @@ static void test_sums_over_frames(void **state)
     mimas_frame_free(&f);
 }
 
+/* Simple cubic packing of touching spheres (R = a/2): nu = pi/6 in every cell
+ * whose edges are whole multiples of a, wherever the cell edges cut. */
 static void test_simple_cubic_solid_fraction(void **state)
 {
     (void)state;
