@@ -9,7 +9,8 @@
 #include <math.h>
 #include <string.h>
 
-#include <gsl/gsl_integration.h>
+#include "annulus_slices.h"
+#include "kronrod41.h"
 
 static const double PI = 3.14159265358979323846;
 static const double TWO_PI = 6.28318530717958647693;
@@ -481,7 +482,7 @@ static void view_setup(disk_view *v, const cylcell *g, double px, double py, dou
     v->ux = d > 0.0 ? px / d : 1.0;
     v->uy = d > 0.0 ? py / d : 0.0;
     const double *e[2] = {g->e0, g->e1};
-    for (int k = 0; k < 2; k++) {
+    for (int k = 0; k < 2 && !g->full; k++) { /* the rays, of a wedge only */
         v->s[k] = e[k][0] * px + e[k][1] * py;
         v->cc[k] = cross2(e[k], px, py);
         v->ex[k] = v->ux * e[k][0] + v->uy * e[k][1];
@@ -657,51 +658,91 @@ static double zone(double R, double wa, double wb)
 
 /* ---- adaptive quadrature --------------------------------------------------- */
 
+/* The slices of a latitude band theta_a..theta_a + dth, z = cz + R sin(theta), taken at
+ * theta = theta_a + dth S(t), S(t) = t^2 (3 - 2t), 0 <= t <= 1: dtheta = 6 dth t (1 - t) dt
+ * vanishes at both ends, where the area behaves like a power 1/2 or 3/2 of the distance
+ * to an event, so that the integrand in t is smooth there. */
 typedef struct slice_par {
     const disk_view *v;
-    double R;
-    double tm, th; /* the slice at z = cz + R sin(theta), theta = tm - th cos(u) */
+    double R, ta, dth;
 } slice_par;
 
-/* The integrand over u in [0, pi]: area of the slice times dz/du. */
-static double slice_area(double u, void *vp)
+/* The band's integrand at the n values t[i]: the slice's area times dz/dt. */
+static void slice_areas(const slice_par *s, const double *t, double *f, int n)
 {
-    const slice_par *s = vp;
-    double th = s->tm - s->th * cos(u);
-    double rho = s->R * cos(th);
-    if (!(rho > 0.0))
-        return 0.0;
-    return disk_cell_area(s->v, rho) * rho * s->th * sin(u); /* dz = rho dtheta */
+    const cylcell *g = s->v->g;
+    if (g->full && s->v->d > 0.0) {
+        annulus_slices(s->v->d, g->r0, g->r1, s->R, s->ta, s->dth, t, f, n);
+        return;
+    }
+    for (int i = 0; i < n; i++) {
+        double th = s->ta + s->dth * (t[i] * t[i] * (3.0 - 2.0 * t[i]));
+        double rho = s->R * cos(th);
+        f[i] = rho > 0.0 ? disk_cell_area(s->v, rho) * rho * 6.0 * s->dth * t[i] * (1.0 - t[i])
+                         : 0.0; /* dz = rho dtheta */
+    }
 }
 
-/* One interval of the global adaptive scheme: u in [a, b] of the latitude
- * band theta = tm - th cos(u). */
+/* One interval t in [a, b] of a band of the global adaptive scheme. */
 typedef struct quad_piece {
-    double tm, th, a, b, res, err;
+    double ta, dth, a, b, res, err;
 } quad_piece;
 
-static void piece_eval(quad_piece *q, slice_par *sp, const gsl_function *f)
+/* QUADPACK's error estimate of a Gauss-Kronrod rule (Piessens et al. 1983, as in GSL's
+ * gsl_integration_qk): |K - G| scaled by the integrand's variation about its mean, and
+ * not below 50 eps of the integral of |f|. */
+static double gk_error(double diff, double resabs, double resasc)
 {
-    double resabs, resasc;
-    sp->tm = q->tm;
-    sp->th = q->th;
-    gsl_integration_qk41(f, q->a, q->b, &q->res, &q->err, &resabs, &resasc);
+    double err = fabs(diff);
+    if (resasc != 0.0 && err != 0.0) {
+        double x = 200.0 * err / resasc, scale = x * sqrt(x); /* x^1.5 */
+        err = scale < 1.0 ? resasc * scale : resasc;
+    }
+    if (resabs > DBL_MIN / (50.0 * DBL_EPSILON) && err < 50.0 * DBL_EPSILON * resabs)
+        err = 50.0 * DBL_EPSILON * resabs;
+    return err;
+}
+
+/* The 41-point Gauss-Kronrod rule (kronrod41.h) on the piece, its integrand taken at all
+ * nodes in one call (slice_areas' loop over them is vectorised). */
+static void piece_eval(quad_piece *q, slice_par *sp)
+{
+    enum { PADDED = (41 + ANNULUS_LANES - 1) / ANNULUS_LANES * ANNULUS_LANES };
+    double c = 0.5 * (q->a + q->b), h = 0.5 * (q->b - q->a), t[PADDED] = {0}, f[PADDED];
+    for (int j = 0; j < 20; j++) {
+        t[j] = c - h * GK41_X[j];
+        t[40 - j] = c + h * GK41_X[j];
+    }
+    t[20] = c;
+    sp->ta = q->ta;
+    sp->dth = q->dth;
+    slice_areas(sp, t, f, 41);
+    double resk = f[20] * GK41_WK[20], resg = 0.0, resabs = fabs(resk);
+    for (int j = 0; j < 20; j++) {
+        double pair = f[j] + f[40 - j];
+        resk += GK41_WK[j] * pair;
+        resabs += GK41_WK[j] * (fabs(f[j]) + fabs(f[40 - j]));
+        if (j & 1)
+            resg += GK41_WG[j / 2] * pair;
+    }
+    double mean = 0.5 * resk, resasc = GK41_WK[20] * fabs(f[20] - mean);
+    for (int j = 0; j < 20; j++)
+        resasc += GK41_WK[j] * (fabs(f[j] - mean) + fabs(f[40 - j] - mean));
+    q->res = resk * h;
+    q->err = gk_error((resk - resg) * h, resabs * fabs(h), resasc * fabs(h));
 }
 
 #define QUAD_LIMIT 96
 
-/* QUADPACK's QAGP strategy with GSL's 41-point Gauss-Kronrod rule: every
- * band is one interval to start with, then the interval with the largest
- * error estimate is bisected until the total error estimate is below
- * max(epsabs, epsrel |total|), total = known + the integrals.  (Not
- * gsl_integration_qagp itself: it needs a workspace and reports failure
- * through GSL's error handler, which aborts by default.) */
+/* QUADPACK's QAGP strategy with the 41-point Gauss-Kronrod rule: every band is one
+ * interval to start with, then the interval with the largest error estimate is bisected
+ * until the total error estimate is below max(epsabs, epsrel |total|), total = known +
+ * the integrals. */
 static double integrate_bands(quad_piece *q, int n, slice_par *sp, double known, double epsabs,
                               double epsrel)
 {
-    gsl_function f = {slice_area, sp};
     for (int i = 0; i < n; i++)
-        piece_eval(&q[i], sp, &f);
+        piece_eval(&q[i], sp);
     for (;;) {
         double tot = known, err = 0.0;
         int worst = 0;
@@ -720,8 +761,8 @@ static double integrate_bands(quad_piece *q, int n, slice_par *sp, double known,
         q[n] = *w;
         q[n].a = mid;
         w->b = mid;
-        piece_eval(w, sp, &f);
-        piece_eval(&q[n], sp, &f);
+        piece_eval(w, sp);
+        piece_eval(&q[n], sp);
         n++;
     }
 }
@@ -840,9 +881,7 @@ double overlap_sphere_cylcell(const double c[3], double R, double r0, double r1,
             vol += 0.5 * g.dphi * (g.r1 - g.r0) * (g.r1 + g.r0) * (wz - wa);
             break;
         default:
-            /* theta = tm - th cos(u) clusters the nodes at both ends, where
-             * the area behaves like a power 1/2 or 3/2 of the distance */
-            bands[nb++] = (quad_piece){tm, 0.5 * (tb[i + 1] - tb[i]), 0.0, PI, 0.0, 0.0};
+            bands[nb++] = (quad_piece){tb[i], tb[i + 1] - tb[i], 0.0, 1.0, 0.0, 0.0};
             break;
         }
     }
