@@ -176,6 +176,21 @@ int mimas_fields_parameters(mimas_fields_file *ff, const char *group, const mima
 }
 
 /* Appends one row (at index k) of a growing dataset of rank 1 + rank(dims). */
+/* One field's column, col[c] = src[c * nf] for the cells c < n, from fields stored cell by cell
+ * (nf per cell): four cells an iteration, since the rows are too far apart for vectors. */
+static void field_column(const double *src, size_t nf, size_t n, double *col)
+{
+    size_t c = 0;
+    for (; c + 4 <= n; c += 4, src += 4 * nf) {
+        col[c] = src[0];
+        col[c + 1] = src[nf];
+        col[c + 2] = src[2 * nf];
+        col[c + 3] = src[3 * nf];
+    }
+    for (; c < n; c++, src += nf)
+        col[c] = src[0];
+}
+
 static int append_row(hid_t ds, hsize_t k, int rank, const hsize_t *dims, const double *row)
 {
     return h5_append_row(ds, k, rank, dims, H5T_NATIVE_DOUBLE, row);
@@ -237,8 +252,7 @@ int mimas_fields_append_frame(mimas_fields_file *ff, const mimas_average *frame,
         for (size_t q = 0; !rc && q < nf; q++) {
             if (ff->per[q] <= 0)
                 continue;
-            for (size_t c = 0; c < cells; c++)
-                col[c] = all[c * nf + q];
+            field_column(all + q, nf, cells, col);
             rc |= append_row(ff->per[q], k, 3, dims, col);
         }
         if (!rc)
@@ -261,9 +275,10 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
     size_t cells = none ? 1 : mimas_grid_cells(g), nf = mimas_fields_count();
     double *mean = mimas_big_calloc(cells * nf, sizeof *mean),
            *sd = mimas_big_calloc(cells * nf, sizeof *sd),
-           *count = mimas_big_calloc(cells * nf, sizeof *count), *col = malloc(cells * sizeof *col);
-    if (!mean || !sd || !count || !col || mimas_average_fields(a, mean, sd, count)) {
-        mimas_big_free(mean), mimas_big_free(sd), mimas_big_free(count), free(col);
+           *count = mimas_big_calloc(cells * nf, sizeof *count), *col = malloc(cells * sizeof *col),
+           *col_sd = malloc(cells * sizeof *col_sd);
+    if (!mean || !sd || !count || !col || !col_sd || mimas_average_fields(a, mean, sd, count)) {
+        mimas_big_free(mean), mimas_big_free(sd), mimas_big_free(count), free(col), free(col_sd);
         int code = mimas_error_set(err, MIMAS_EIO, "%s: out of memory for the fields of %zu "
                                    "cells", ff->path, cells);
         mimas_fields_abort(ff);
@@ -310,13 +325,13 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
                                    "frames in which the field was defined",
                                    "standard error std/sqrt(count) (nan where count < 2)"};
             for (int m = 0; m < 4 && !rc; m++) {
-                for (size_t c = 0; c < cells; c++) {
-                    size_t at = c * nf + k;
-                    col[c] = m < 3 ? src[m][at]
-                                   : count[at] > 1 ? sd[at] / sqrt(count[at]) : NAN;
-                }
-                rc |= h5_write_doubles(one, what[m], 3, dims, col, m == 2 ? NULL : fd->unit,
-                                       desc[m]);
+                if (m < 3) /* the std column stays in col_sd for the sem */
+                    field_column(src[m] + k, nf, cells, m == 1 ? col_sd : col);
+                else
+                    for (size_t c = 0; c < cells; c++) /* col holds the counts */
+                        col[c] = col[c] > 1 ? col_sd[c] / sqrt(col[c]) : NAN;
+                rc |= h5_write_doubles(one, what[m], 3, dims, m == 1 ? col_sd : col,
+                                       m == 2 ? NULL : fd->unit, desc[m]);
             }
             if (one >= 0)
                 H5Gclose(one);
@@ -365,7 +380,7 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
     }
     h5_quiet_end(&q);
     mimas_big_free(mean), mimas_big_free(sd), mimas_big_free(count);
-    free(col), free(times);
+    free(col), free(col_sd), free(times);
     if (!rc && rename(ff->tmp, ff->path) != 0) {
         rc = 1;
         snprintf(why, sizeof why, "cannot rename it into place: %s", strerror(errno));
