@@ -628,13 +628,14 @@ static void test_cyl_brute_force(void **state)
 /* Rings of the full circle in a slab, by differences of cylinders (overlap_sphere_rings),
  * against the cells one by one (overlap_sphere_cylcell): every ring within 1e-13 of the
  * ball's volume, an exact 0 where the cell misses the ball, and rings from the axis to
- * beyond the ball adding up to the ball's slab. */
+ * beyond the ball adding up to the ball's slab; and each cell against the sum of its two
+ * half circles, whose slices take another path (libm's functions, a node at a time). */
 static void test_cyl_rings(void **state)
 {
     (void)state;
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     enum { N = 12 };
-    double worst = 0.0;
+    double worst = 0.0, worst_halves = 0.0;
     int zeros = 0;
     for (int trial = 0; trial < 400; trial++) {
         double R = 0.1 + gsl_rng_uniform(rng), dist = 3.0 * gsl_rng_uniform(rng);
@@ -659,6 +660,12 @@ static void test_cyl_rings(void **state)
             assert_true(vol[k] >= 0.0);
             worst = fmax(worst, fabs(vol[k] - cell) / ball(R));
             assert_close(vol[k], cell, 1e-13 * ball(R));
+            /* the full circle's vectorised areas (annulus_slices.c) against two half
+             * circles, whose areas come one at a time from libm */
+            double halves = overlap_sphere_cylcell(c, R, r[k], r[k + 1], 0.0, PI, z0, z1) +
+                            overlap_sphere_cylcell(c, R, r[k], r[k + 1], PI, 2 * PI, z0, z1);
+            worst_halves = fmax(worst_halves, fabs(cell - halves) / ball(R));
+            assert_close(cell, halves, 1e-13 * ball(R));
             sum += vol[k];
         }
         if (r[0] == 0.0 && r[N] >= hypot(c[0], c[1]) + R)
@@ -667,7 +674,8 @@ static void test_cyl_rings(void **state)
     double c[3] = {NAN, 0.0, 0.0}, r[2] = {0.0, 1.0}, vol[1];
     overlap_sphere_rings(c, 0.5, 1, r, -1.0, 1.0, vol);
     assert_true(isnan(vol[0]));
-    print_message("# rings against cells: worst %.2g of the ball, %d empty rings\n", worst, zeros);
+    print_message("# rings against cells: worst %.2g of the ball, %d empty rings; cells against "
+                  "half circles %.2g\n", worst, zeros, worst_halves);
     assert_true(zeros > 100);
     gsl_rng_free(rng);
 }
