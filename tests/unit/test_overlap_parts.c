@@ -1,7 +1,8 @@
 /* The parts of the sphere-ring overlap's quadrature (averaging/overlap.c): the polynomial
  * cosine, atan2 and beta - sin(beta) of averaging/poly_trig.h against libm and against long
- * double, and the 41-point Gauss-Kronrod rule of averaging/kronrod41.h against the integrals
- * of polynomials and against GSL's gsl_integration_qk41. */
+ * double, the builds of the slices (averaging/annulus_slices.c) against each other, and the
+ * 41-point Gauss-Kronrod rule of averaging/kronrod41.h against the integrals of
+ * polynomials and against GSL's gsl_integration_qk41. */
 #include <config.h>
 
 #include <setjmp.h>
@@ -15,10 +16,13 @@
 #include <gsl/gsl_rng.h>
 #include <math.h>
 
+#include "annulus_slices.h"
 #include "kronrod41.h"
-#include "poly_trig.h"
+#include "simd.h"
 
-#pragma GCC diagnostic ignored "-Wpsabi" /* vectors only inside inlined helpers */
+#define PT_LANES 2
+#define PT_(name) pt_##name
+#include "poly_trig.h"
 
 #define PI 3.14159265358979323846
 
@@ -28,7 +32,7 @@ static void at_points(int which, const double *y, const double *x, double *out)
     pt_vd vx, vy;
     memcpy(&vx, x, sizeof vx);
     memcpy(&vy, y, sizeof vy);
-    pt_vd r = which == 0 ? poly_cos(vx) : which == 1 ? poly_bms(vx) : poly_atan2(vy, vx);
+    pt_vd r = which == 0 ? pt_cos(vx) : which == 1 ? pt_bms(vx) : pt_atan2(vy, vx);
     memcpy(out, &r, sizeof r);
 }
 
@@ -86,17 +90,60 @@ static void test_poly_trig(void **state)
     assert_true(worst[0] < 4.0 * DBL_EPSILON);
     assert_true(worst[1] < 8.0 * DBL_EPSILON);
     assert_true(worst[2] < 8.0 * DBL_EPSILON);
-    /* the limits: atan2 at 0 and on the axes, cos at the ends, bms at 0 */
-    double x[PT_LANES] = {0.0, -1.0, 0.0, 2.0}, y[PT_LANES] = {0.0, 0.0, 3.0, 0.0}, r[PT_LANES];
-    at_points(2, y, x, r);
+    /* the limits: atan2 at 0 and on the axes, cos at the ends, bms at 0 (PT_LANES a call) */
+    double x[4] = {0.0, -1.0, 0.0, 2.0}, y[4] = {0.0, 0.0, 3.0, 0.0}, r[4];
+    double e[4] = {PI / 2, -PI / 2, 0.0, 1e-300}, c[4], b[4];
+    for (int k = 0; k < 4; k += PT_LANES) {
+        at_points(2, y + k, x + k, r + k);
+        at_points(0, y + k, e + k, c + k);
+        at_points(1, y + k, e + k, b + k);
+    }
     assert_true(r[0] == 0.0 && r[3] == 0.0);
     assert_true(fabs(r[1] - PI) <= 4e-16 && fabs(r[2] - PI / 2) <= 2.3e-16);
-    double e[PT_LANES] = {PI / 2, -PI / 2, 0.0, 1e-300};
-    at_points(0, y, e, r);
-    assert_true(fabs(r[0]) < 4e-16 && fabs(r[1]) < 4e-16 && r[2] == 1.0 && r[3] == 1.0);
-    at_points(1, y, e, r);
-    assert_true(r[2] == 0.0 && r[3] == 0.0);
+    assert_true(fabs(c[0]) < 4e-16 && fabs(c[1]) < 4e-16 && c[2] == 1.0 && c[3] == 1.0);
+    assert_true(b[2] == 0.0 && b[3] == 0.0);
     gsl_rng_free(rng);
+}
+
+/* The builds of the slices the processor runs (four and eight nodes at a time) give the
+ * portable build's values (two at a time) to the bit, on random balls, annuli and bands. */
+static void test_slice_builds(void **state)
+{
+    (void)state;
+#if MIMAS_X86_DISPATCH
+    if (!__builtin_cpu_supports("avx2"))
+        skip(); /* one build only: nothing to compare */
+    int avx512 = __builtin_cpu_supports("avx512f");
+    if (!avx512)
+        print_message("# no AVX-512 on this processor: its build not compared\n");
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    enum { N = 41, PAD = (N + ANNULUS_LANES - 1) / ANNULUS_LANES * ANNULUS_LANES };
+    long compared = 0;
+    for (int trial = 0; trial < 20000; trial++) {
+        double R = 0.05 + gsl_rng_uniform(rng), d = 3.0 * gsl_rng_uniform(rng) + 1e-3;
+        double r1 = d + R * (4.0 * gsl_rng_uniform(rng) - 2.0);
+        double r0 = trial % 2 ? 0.0 : r1 * gsl_rng_uniform(rng);
+        if (!(r1 > r0))
+            continue;
+        double ta = -PI / 2 + PI * gsl_rng_uniform(rng);
+        double dth = (PI / 2 - ta) * gsl_rng_uniform(rng);
+        double t[PAD] = {0}, f[3][PAD];
+        for (int i = 0; i < N; i++)
+            t[i] = gsl_rng_uniform(rng);
+        annulus_slices_portable(d, r0, r1, R, ta, dth, t, f[0], N);
+        annulus_slices_avx2(d, r0, r1, R, ta, dth, t, f[1], N);
+        if (avx512)
+            annulus_slices_avx512(d, r0, r1, R, ta, dth, t, f[2], N);
+        for (int b = 1; b < (avx512 ? 3 : 2); b++) {
+            assert_memory_equal(f[0], f[b], N * sizeof(double));
+            compared += N;
+        }
+    }
+    print_message("# %ld slices compared to the bit\n", compared);
+    gsl_rng_free(rng);
+#else
+    skip();
+#endif
 }
 
 /* the rule on [-1, 1] with the integrand's values at its 41 abscissae: Kronrod's and the
@@ -150,6 +197,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_poly_trig),
+        cmocka_unit_test(test_slice_builds),
         cmocka_unit_test(test_kronrod41),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
