@@ -10,7 +10,7 @@
  * rho^2 (pi - tau), in *arc; beta and tau the crossing point's angles seen from the axis
  * and from the disk's centre, as circle_parts in overlap.c. */
 static inline __attribute__((always_inline)) PT_(vd)
-    PT_(circle_terms)(double d, PT_(vd) rho, double r, PT_(vd) * arc)
+    PT_(circle_terms)(double d, PT_(vd) rho, double r, PT_(vd) *arc)
 {
     const PT_(vd) zero = {0};
     const double pi = 3.14159265358979323846;

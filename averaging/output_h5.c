@@ -175,9 +175,8 @@ int mimas_fields_parameters(mimas_fields_file *ff, const char *group, const mima
               : MIMAS_OK;
 }
 
-/* Appends one row (at index k) of a growing dataset of rank 1 + rank(dims). */
-/* One field's column, col[c] = src[c * nf] for the cells c < n, from fields stored cell by cell
- * (nf per cell): four cells an iteration, since the rows are too far apart for vectors. */
+/* One field's column, col[c] = src[c * nf] for the cells c < n, from fields stored cell by
+ * cell (nf per cell): four cells an iteration, their rows too far apart for vectors. */
 static void field_column(const double *src, size_t nf, size_t n, double *col)
 {
     size_t c = 0;
@@ -191,6 +190,7 @@ static void field_column(const double *src, size_t nf, size_t n, double *col)
         col[c] = src[0];
 }
 
+/* Appends one row (at index k) of a growing dataset of rank 1 + rank(dims). */
 static int append_row(hid_t ds, hsize_t k, int rank, const hsize_t *dims, const double *row)
 {
     return h5_append_row(ds, k, rank, dims, H5T_NATIVE_DOUBLE, row);
@@ -275,8 +275,8 @@ int mimas_fields_finish(mimas_fields_file *ff, const mimas_average *a, const cha
     size_t cells = none ? 1 : mimas_grid_cells(g), nf = mimas_fields_count();
     double *mean = mimas_big_calloc(cells * nf, sizeof *mean),
            *sd = mimas_big_calloc(cells * nf, sizeof *sd),
-           *count = mimas_big_calloc(cells * nf, sizeof *count), *col = malloc(cells * sizeof *col),
-           *col_sd = malloc(cells * sizeof *col_sd);
+           *count = mimas_big_calloc(cells * nf, sizeof *count),
+           *col = malloc(cells * sizeof *col), *col_sd = malloc(cells * sizeof *col_sd);
     if (!mean || !sd || !count || !col || !col_sd || mimas_average_fields(a, mean, sd, count)) {
         mimas_big_free(mean), mimas_big_free(sd), mimas_big_free(count), free(col), free(col_sd);
         int code = mimas_error_set(err, MIMAS_EIO, "%s: out of memory for the fields of %zu "
